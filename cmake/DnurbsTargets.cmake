@@ -1,0 +1,49 @@
+# dnurbs_add_library(<folder> DEPENDS <targets...>)
+# Builds the library dnurbs_<folder> (alias dnurbs::<folder>) from <folder>/*.cpp; a folder with
+# no sources yet becomes an interface library. Headers install under include/dnurbs/<folder>.
+function(dnurbs_add_library folder)
+  cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.cpp")
+  set(target dnurbs_${folder})
+  if(sources)
+    add_library(${target} ${sources})
+    target_link_libraries(${target} PUBLIC ${ARG_DEPENDS} PRIVATE dnurbs_warnings)
+    target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/dnurbs>)
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder} POSITION_INDEPENDENT_CODE ON)
+  else()
+    add_library(${target} INTERFACE)
+    target_link_libraries(${target} INTERFACE ${ARG_DEPENDS})
+    target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/dnurbs>)
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder})
+  endif()
+  add_library(dnurbs::${folder} ALIAS ${target})
+  install(TARGETS ${target} EXPORT dnurbsTargets)
+  install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dnurbs/${folder}
+          FILES_MATCHING PATTERN "*.h")
+endfunction()
+
+# dnurbs_add_test_folder(<folder> LABELS <labels...>)
+# One GoogleTest executable test_<folder> from tests/<folder>/*.cpp; one ctest test per test case,
+# each labelled with the folder's name and any extra labels.
+function(dnurbs_add_test_folder folder)
+  cmake_parse_arguments(ARG "" "" "LABELS;DEPENDS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp")
+  if(NOT sources)
+    return()
+  endif()
+  add_executable(test_${folder} ${sources})
+  # A layer's tests link that layer only (so a broken upper layer cannot hide a lower one).
+  if(TARGET dnurbs::${folder})
+    set(library dnurbs::${folder})
+  else()
+    set(library dnurbs::dnurbs)
+  endif()
+  target_link_libraries(test_${folder} PRIVATE ${library} ${ARG_DEPENDS} GTest::gtest_main GTest::gmock
+                        dnurbs_warnings)
+  target_compile_definitions(test_${folder} PRIVATE
+                             DNURBS_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data"
+                             DNURBS_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(test_${folder} PROPERTIES LABELS "${folder};${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
+endfunction()

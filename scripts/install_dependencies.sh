@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages dnurbs needs, only those that are missing.
+# Run as root (or with sudo available). Safe to run again.
+set -euo pipefail
+
+packages=(
+  build-essential cmake git pkg-config
+  libeigen3-dev          # linear algebra (dense and sparse)
+  libnlopt-cxx-dev       # optimisation (design and fitting)
+  libassimp-dev          # mesh export and import
+  nlohmann-json3-dev     # shape and scene files (JSON)
+  libgtest-dev libgmock-dev
+  libbenchmark-dev       # bench/
+  python3 python3-matplotlib python3-numpy  # PNG previews and bench plots
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "dnurbs: installing ${missing[*]}"
+sudo_prefix=""
+if [ "$(id -u)" -ne 0 ]; then
+  sudo_prefix="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo_prefix apt-get update -qq
+$sudo_prefix apt-get install -y -qq --no-install-recommends "${missing[@]}"
