@@ -23,7 +23,9 @@ int quantity_count(int order, bool surface) {
   return surface ? (order + 1) * (order + 2) / 2 : order + 1;
 }
 
-double binomial(int n, int k) { return (k == 0 || k == n) ? 1.0 : static_cast<double>(n); }
+double binomial(int n, int k) {
+  return (k == 0 || k == n) ? 1.0 : static_cast<double>(n);
+}
 
 // Product binomial C(alpha, beta) for the orders <= 2 used here.
 double multi_binomial(MultiIndex alpha, MultiIndex beta) {
@@ -52,15 +54,16 @@ template <size_t N, typename BasisMatrix, typename WeightColumns, typename Point
 void rational_jacobian(const std::array<MultiIndex, N>& indices, int quantities, int active,
                        const BasisMatrix& nonrational, const double* weights,
                        const Eigen::MatrixX3d& control_points, const int* control_point,
-                       WeightMode mode, BasisMatrix& rational, WeightColumns& weight_column,
-                       Points& point_derivatives) {
+                       bool is_rational, WeightMode mode, BasisMatrix& rational,
+                       WeightColumns& weight_column, Points& point_derivatives) {
   std::array<double, N> weight_derivative{};
   for (int q = 0; q < quantities; ++q) {
     double sum = 0.0;
     for (int a = 0; a < active; ++a) {
       sum += nonrational(q, a) * weights[a];
     }
-    weight_derivative[static_cast<size_t>(q)] = sum;
+    // Equal weights: W is constant, so its derivatives are exactly zero (not sums of rounding).
+    weight_derivative[static_cast<size_t>(q)] = (q == 0 || is_rational) ? sum : 0.0;
   }
   const double w0 = weight_derivative[0];
   for (int q = 0; q < quantities; ++q) {
@@ -132,8 +135,8 @@ void curve_jacobian(const NurbsCurve& curve, double u, int order, WeightMode mod
   }
   std::array<Eigen::Vector3d, 3> points;
   rational_jacobian(kCurveIndices, quantities, active, nonrational, weights.data(),
-                    curve.control_points(), jacobian.control_point.data(), mode, jacobian.basis,
-                    jacobian.weight_column, points);
+                    curve.control_points(), jacobian.control_point.data(), curve.is_rational(),
+                    mode, jacobian.basis, jacobian.weight_column, points);
   jacobian.point_derivatives.resize(quantities, 3);
   for (int q = 0; q < quantities; ++q) {
     jacobian.point_derivatives.row(q) = points[static_cast<size_t>(q)].transpose();
@@ -161,7 +164,8 @@ void surface_jacobian(const NurbsSurface& surface, double u, double v, int order
     column.resize(3, active);
   }
   std::array<double, SurfaceJacobian::kMaxActive> weights{};
-  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, SurfaceJacobian::kMaxActive> nonrational(6, active);
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, SurfaceJacobian::kMaxActive> nonrational(6,
+                                                                                          active);
   for (int a = 0; a <= p; ++a) {
     const int i = knots_u.control_point_index(span_u, a);
     for (int b = 0; b <= q_degree; ++b) {
@@ -176,8 +180,8 @@ void surface_jacobian(const NurbsSurface& surface, double u, double v, int order
     }
   }
   rational_jacobian(kSurfaceIndices, quantities, active, nonrational, weights.data(),
-                    surface.control_points(), jacobian.control_point.data(), mode, jacobian.basis,
-                    jacobian.weight_column, jacobian.point_derivatives);
+                    surface.control_points(), jacobian.control_point.data(), surface.is_rational(),
+                    mode, jacobian.basis, jacobian.weight_column, jacobian.point_derivatives);
 }
 
 namespace {
@@ -193,7 +197,8 @@ Eigen::SparseMatrix<double> sparse_from(const Jacobian& jacobian, int quantity, 
     for (int c = 0; c < 3; ++c) {
       entries.emplace_back(c, first + c, jacobian.basis(quantity, a));
       if (mode == WeightMode::kFree) {
-        entries.emplace_back(c, first + 3, jacobian.weight_column[static_cast<size_t>(quantity)](c, a));
+        entries.emplace_back(c, first + 3,
+                             jacobian.weight_column[static_cast<size_t>(quantity)](c, a));
       }
     }
   }

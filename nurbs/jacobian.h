@@ -20,7 +20,9 @@ namespace dnurbs {
 enum class WeightMode { kFixed, kFree };
 
 /// Coordinates per control point: 3 with fixed weights, 4 with free weights.
-inline int coordinates_per_control_point(WeightMode mode) { return mode == WeightMode::kFree ? 4 : 3; }
+inline int coordinates_per_control_point(WeightMode mode) {
+  return mode == WeightMode::kFree ? 4 : 3;
+}
 
 /// Parametric quantities whose Jacobians are available.
 enum class CurveQuantity { kPoint = 0, kU = 1, kUU = 2 };

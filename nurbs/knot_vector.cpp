@@ -60,16 +60,16 @@ void KnotVector::validate() const {
   const int p = degree_;
   const int count = size();
   if (count < 2 * (p + 1)) {
-    throw make_error("a knot vector of degree ", p, " needs at least ", 2 * (p + 1),
-                     " knots, got ", count);
+    throw make_error("a knot vector of degree ", p, " needs at least ", 2 * (p + 1), " knots, got ",
+                     count);
   }
   for (int i = 0; i < count; ++i) {
     if (!std::isfinite(knots_[static_cast<size_t>(i)])) {
       throw make_error("knot ", i, " is not finite (", knots_[static_cast<size_t>(i)], ")");
     }
     if (i > 0 && knots_[static_cast<size_t>(i)] < knots_[static_cast<size_t>(i - 1)]) {
-      throw make_error("knot vector decreases at index ", i, ": ", knots_[static_cast<size_t>(i - 1)],
-                       " > ", knots_[static_cast<size_t>(i)]);
+      throw make_error("knot vector decreases at index ", i, ": ",
+                       knots_[static_cast<size_t>(i - 1)], " > ", knots_[static_cast<size_t>(i)]);
     }
   }
   if (!(domain_end() > domain_start())) {
@@ -111,7 +111,8 @@ KnotVector KnotVector::clamped_uniform(int degree, int control_point_count, doub
   return clamped_from_breakpoints(degree, breakpoints);
 }
 
-KnotVector KnotVector::clamped_from_breakpoints(int degree, const std::vector<double>& breakpoints) {
+KnotVector KnotVector::clamped_from_breakpoints(int degree,
+                                                const std::vector<double>& breakpoints) {
   check_degree(degree);
   if (breakpoints.size() < 2) {
     throw make_error("clamped knot vector needs at least 2 breakpoints, got ", breakpoints.size());
@@ -144,8 +145,10 @@ KnotVector KnotVector::periodic(int degree, const std::vector<double>& period_kn
 KnotVector KnotVector::periodic_uniform(int degree, int control_point_count, double start,
                                         double end) {
   if (control_point_count < 1 || !std::isfinite(start) || !std::isfinite(end)) {
-    throw make_error("periodic knot vector needs a positive control point count and finite ends,"
-                     " got ", control_point_count, " over [", start, ", ", end, "]");
+    throw make_error(
+        "periodic knot vector needs a positive control point count and finite ends,"
+        " got ",
+        control_point_count, " over [", start, ", ", end, "]");
   }
   std::vector<double> period_knots(static_cast<size_t>(control_point_count + 1));
   for (int i = 0; i <= control_point_count; ++i) {

@@ -56,7 +56,9 @@ class KnotVector {
   int size() const { return static_cast<int>(knots_.size()); }
 
   double domain_start() const { return knots_[static_cast<std::size_t>(degree_)]; }
-  double domain_end() const { return knots_[knots_.size() - 1 - static_cast<std::size_t>(degree_)]; }
+  double domain_end() const {
+    return knots_[knots_.size() - 1 - static_cast<std::size_t>(degree_)];
+  }
   /// True if every knot of the two vectors agrees exactly and both have the same kind.
   bool operator==(const KnotVector& other) const = default;
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "nurbs/error.h"
 #include "nurbs/rational_validation.h"
 
@@ -11,8 +13,8 @@ NurbsCurve::NurbsCurve(KnotVector knots, Eigen::MatrixX3d control_points, Eigen:
     : knots_(std::move(knots)) {
   const int count = knots_.control_point_count();
   if (control_points.rows() != count) {
-    throw make_error("curve of degree ", knots_.degree(), " with ", knots_.size(),
-                     " knots needs ", count, " control points, got ", control_points.rows());
+    throw make_error("curve of degree ", knots_.degree(), " with ", knots_.size(), " knots needs ",
+                     count, " control points, got ", control_points.rows());
   }
   set_control_points(control_points);
   set_weights(weights.size() == 0 ? Eigen::VectorXd::Ones(count) : weights);
@@ -62,7 +64,13 @@ void NurbsCurve::derivatives(double u, int order, CurveDerivatives& result) cons
       weight_derivatives[k] += weighted;
     }
   }
-  // Quotient rule, Piegl & Tiller A4.2: C^(k) = (A^(k) - sum_{i=1..k} binom(k,i) w^(i) C^(k-i)) / w.
+  if (!rational_) {
+    // Equal weights: C^(k) = A^(k) / w exactly, without the rounding of the quotient rule.
+    result = homogeneous / weights_[0];
+    return;
+  }
+  // Quotient rule, Piegl & Tiller A4.2: C^(k) = (A^(k) - sum_{i=1..k} binom(k,i) w^(i) C^(k-i)) /
+  // w.
   result.resize(order + 1, 3);
   for (int k = 0; k <= order; ++k) {
     Eigen::RowVector3d value = homogeneous.row(k);

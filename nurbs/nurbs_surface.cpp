@@ -117,10 +117,21 @@ void NurbsSurface::derivatives(double u, double v, int order, SurfaceDerivatives
       }
     }
   }
-  const auto weight = [&](int k, int l) { return weight_sums[static_cast<size_t>(weight_index(k, l))]; };
+  const auto weight = [&](int k, int l) {
+    return weight_sums[static_cast<size_t>(weight_index(k, l))];
+  };
 
-  // Quotient rule on homogeneous coordinates, Piegl & Tiller A4.4.
+  // Quotient rule on homogeneous coordinates, Piegl & Tiller A4.4 (with equal weights the
+  // weight derivatives vanish exactly and S^(k,l) = A^(k,l) / w).
   result.reset(order);
+  if (!rational_) {
+    for (int k = 0; k <= order; ++k) {
+      for (int l = 0; k + l <= order; ++l) {
+        result(k, l) = homogeneous(k, l) / weights_[0];
+      }
+    }
+    return;
+  }
   for (int k = 0; k <= order; ++k) {
     for (int l = 0; k + l <= order; ++l) {
       Eigen::Vector3d value = homogeneous(k, l);
@@ -155,9 +166,14 @@ Eigen::Vector3d NurbsSurface::unit_normal(double u, double v) const {
   if (normal.norm() > 1e-12 * scale && scale > 0.0) {
     return normal.normalized();
   }
-  // Degenerate point: Su (or Sv) vanishes along a collapsed edge. Near it Su ~ h Suv (or
-  // Sv ~ h Suv), so the limit normal is Suv x Sv (or Su x Suv); one of the two terms is zero.
-  const Eigen::Vector3d limit = d(1, 1).cross(sv) + su.cross(d(1, 1));
+  // Degenerate point: Sv (or Su) vanishes along a collapsed edge u = u0 (or v = v0). Moving into
+  // the domain, Sv ~ (u - u0) Suv (or Su ~ (v - v0) Suv), so the limit normal is
+  // sign(u - u0) Su x Suv (or sign(v - v0) Suv x Sv); the sign is negative at the domain end.
+  const double u_side = knots_u_.to_domain(u) >= knots_u_.domain_end() ? -1.0 : 1.0;
+  const double v_side = knots_v_.to_domain(v) >= knots_v_.domain_end() ? -1.0 : 1.0;
+  const Eigen::Vector3d limit = sv.norm() <= su.norm()
+                                    ? Eigen::Vector3d(u_side * su.cross(d(1, 1)))
+                                    : Eigen::Vector3d(v_side * d(1, 1).cross(sv));
   if (limit.norm() > 0.0 && std::isfinite(limit.norm())) {
     return limit.normalized();
   }
@@ -183,9 +199,10 @@ SurfaceCurvature NurbsSurface::curvature(double u, double v) const {
   result.principal_min = solver.eigenvalues()[0];
   result.principal_max = solver.eigenvalues()[1];
   result.gaussian = second.determinant() / first.determinant();
-  result.mean = 0.5 * (first(0, 0) * second(1, 1) - 2.0 * first(0, 1) * second(0, 1) +
-                       first(1, 1) * second(0, 0)) /
-                first.determinant();
+  result.mean =
+      0.5 *
+      (first(0, 0) * second(1, 1) - 2.0 * first(0, 1) * second(0, 1) + first(1, 1) * second(0, 0)) /
+      first.determinant();
   const Eigen::Vector2d min_coefficients = solver.eigenvectors().col(0);
   const Eigen::Vector2d max_coefficients = solver.eigenvectors().col(1);
   result.direction_min = (min_coefficients[0] * su + min_coefficients[1] * sv).normalized();

@@ -28,10 +28,10 @@ class SurfaceDerivatives {
 
 /// Curvatures of a surface at a point, with respect to the unit normal (Su x Sv)/|Su x Sv|.
 struct SurfaceCurvature {
-  double gaussian = 0.0;   ///< K = k1 k2
-  double mean = 0.0;       ///< H = (k1 + k2) / 2
-  double principal_max = 0.0;  ///< k1 >= k2
-  double principal_min = 0.0;  ///< k2
+  double gaussian = 0.0;                                    ///< K = k1 k2
+  double mean = 0.0;                                        ///< H = (k1 + k2) / 2
+  double principal_max = 0.0;                               ///< k1 >= k2
+  double principal_min = 0.0;                               ///< k2
   Eigen::Vector3d direction_max = Eigen::Vector3d::Zero();  ///< unit principal direction of k1
   Eigen::Vector3d direction_min = Eigen::Vector3d::Zero();  ///< unit principal direction of k2
 };

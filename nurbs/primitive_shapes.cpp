@@ -58,15 +58,17 @@ NurbsSurface surface_of_revolution(const NurbsCurve& profile) {
     for (int j = 0; j < 9; ++j) {
       const Eigen::Vector3d unit = circle.control_points().row(j).transpose();
       const int row = i * 9 + j;
-      points.row(row) << radius * (c * unit.x() - s * unit.y()), radius * (s * unit.x() + c * unit.y()),
-          p.z();
+      points.row(row) << radius * (c * unit.x() - s * unit.y()),
+          radius * (s * unit.x() + c * unit.y()), p.z();
       weights[row] = profile.weights()[i] * circle.weights()[j];
     }
   }
   return NurbsSurface(profile.knots(), circle.knots(), std::move(points), std::move(weights));
 }
 
-NurbsSurface sphere(double radius) { return surface_of_revolution(half_circle_xz(radius)); }
+NurbsSurface sphere(double radius) {
+  return surface_of_revolution(half_circle_xz(radius));
+}
 
 NurbsSurface torus(double major_radius, double minor_radius) {
   check_radius(major_radius, "torus major radius");

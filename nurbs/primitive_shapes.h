@@ -7,7 +7,8 @@
 namespace dnurbs {
 
 /// The rational quadratic full circle of the given radius in the xy plane around `centre`:
-/// 9 control points on a square, weights 1 and sqrt(2)/2, knots {0,0,0,1/4,1/4,1/2,1/2,3/4,3/4,1,1,1}.
+/// 9 control points on a square, weights 1 and sqrt(2)/2, knots
+/// {0,0,0,1/4,1/4,1/2,1/2,3/4,3/4,1,1,1}.
 NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
 
 /// The rational quadratic half circle in the xz plane from the south pole (0, 0, -r) through
@@ -21,7 +22,8 @@ NurbsSurface surface_of_revolution(const NurbsCurve& profile);
 /// The rational sphere of the given radius about the origin: surface_of_revolution(half_circle_xz).
 NurbsSurface sphere(double radius);
 
-/// A torus about the z axis with tube centre distance `major_radius` and tube radius `minor_radius`.
+/// A torus about the z axis with tube centre distance `major_radius` and tube radius
+/// `minor_radius`.
 NurbsSurface torus(double major_radius, double minor_radius);
 
 }  // namespace dnurbs

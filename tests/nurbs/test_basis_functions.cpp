@@ -35,7 +35,8 @@ TEST(BasisFunctions, PartitionOfUnity) {
       EXPECT_NEAR((derivatives.row(0).transpose() - values).norm(), 0.0, 1e-15);
       // Derivatives of a partition of unity sum to zero (relative to their size).
       for (int k = 1; k <= degree; ++k) {
-        EXPECT_NEAR(derivatives.row(k).sum(), 0.0, 1e-10 * (1.0 + derivatives.row(k).cwiseAbs().sum()));
+        EXPECT_NEAR(derivatives.row(k).sum(), 0.0,
+                    1e-10 * (1.0 + derivatives.row(k).cwiseAbs().sum()));
       }
     }
   }

@@ -44,7 +44,9 @@ TEST(GaussLegendre, IsNotExactBeyondDegreeTwoN) {
 
 TEST(GaussLegendre, MappedRuleIntegratesOnAnInterval) {
   // integral_{0.5}^{2} (3x^5 - x^2 + 4) dx = [x^6/2 - x^3/3 + 4x] = 43.96875 - ... exactly:
-  const auto antiderivative = [](double x) { return std::pow(x, 6) / 2 - std::pow(x, 3) / 3 + 4 * x; };
+  const auto antiderivative = [](double x) {
+    return std::pow(x, 6) / 2 - std::pow(x, 3) / 3 + 4 * x;
+  };
   const GaussLegendreRule rule = gauss_legendre_rule_on(3, 0.5, 2.0);
   double sum = 0.0;
   for (int i = 0; i < 3; ++i) {

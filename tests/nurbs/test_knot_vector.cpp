@@ -34,15 +34,22 @@ TEST(KnotVector, RejectsDecreasingKnotsNamingTheIndex) {
 
 TEST(KnotVector, RejectsNonFiniteKnots) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THAT(error_message([&] { KnotVector(1, {0, 0, nan, 1, 1}); }), HasSubstr("knot 2 is not finite"));
+  EXPECT_THAT(error_message([&] {
+                KnotVector(1, {0, 0, nan, 1, 1});
+              }),
+              HasSubstr("knot 2 is not finite"));
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_THAT(error_message([&] { KnotVector(1, {0, 0, 1, inf}); }), HasSubstr("inf"));
 }
 
 TEST(KnotVector, RejectsInteriorMultiplicityAboveDegree) {
-  EXPECT_THAT(error_message([] { KnotVector(2, {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1}); }),
+  EXPECT_THAT(error_message([] {
+                KnotVector(2, {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1});
+              }),
               HasSubstr("knot 0.5 has multiplicity 3"));
-  EXPECT_THAT(error_message([] { KnotVector(2, {0, 0, 0, 0, 1, 1, 1}); }),
+  EXPECT_THAT(error_message([] {
+                KnotVector(2, {0, 0, 0, 0, 1, 1, 1});
+              }),
               HasSubstr("knot 0 has multiplicity 4"));
 }
 
@@ -82,7 +89,8 @@ TEST(KnotVector, FindSpanBracketsEveryParameter) {
   std::mt19937 generator(7);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   for (int trial = 0; trial < 2000; ++trial) {
-    const double u = trial < 4 ? std::vector<double>{0.1, 0.35, 0.6, 0.9}[trial] : uniform(generator);
+    const double u =
+        trial < 4 ? std::vector<double>{0.1, 0.35, 0.6, 0.9}[trial] : uniform(generator);
     const int span = knots.find_span(u);
     EXPECT_LE(knots[span], u);
     EXPECT_LT(u, knots[span + 1]);
@@ -117,10 +125,14 @@ TEST(KnotVector, PeriodicVectorWrapsParametersAndControlPoints) {
 }
 
 TEST(KnotVector, PeriodicRejectsTooFewControlPointsAndMultiplicityAcrossTheWrap) {
-  EXPECT_THAT(error_message([] { KnotVector::periodic(3, {0, 0.5, 1}); }),
+  EXPECT_THAT(error_message([] {
+                KnotVector::periodic(3, {0, 0.5, 1});
+              }),
               HasSubstr("at least 5 period knots"));
   // 0 twice at the start and 1 twice at the end wrap onto one knot of multiplicity 3 > p = 2.
-  EXPECT_THAT(error_message([] { KnotVector::periodic(2, {0, 0, 0.5, 0.7, 1, 1}); }),
+  EXPECT_THAT(error_message([] {
+                KnotVector::periodic(2, {0, 0, 0.5, 0.7, 1, 1});
+              }),
               HasSubstr("multiplicity 3"));
 }
 
