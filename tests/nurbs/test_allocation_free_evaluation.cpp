@@ -1,0 +1,62 @@
+// The D-NURBS hot path (points, derivatives and Jacobians at quadrature points) must not touch
+// the heap. A counting global operator new checks it.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "nurbs/jacobian.h"
+#include "sample_shapes.h"
+
+namespace {
+std::atomic<long> allocation_count{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  allocation_count.fetch_add(1, std::memory_order_relaxed);
+  if (void* pointer = std::malloc(size == 0 ? 1 : size)) {
+    return pointer;
+  }
+  throw std::bad_alloc();
+}
+void operator delete(void* pointer) noexcept {
+  std::free(pointer);
+}
+void operator delete(void* pointer, std::size_t) noexcept {
+  std::free(pointer);
+}
+
+namespace dnurbs {
+namespace {
+
+TEST(Evaluation, PointsDerivativesAndJacobiansDoNotAllocate) {
+  // The counter sees allocations (so a zero below means something).
+  const long control_start = allocation_count.load();
+  ::operator delete(::operator new(16));  // a direct call, which the compiler may not elide
+  ASSERT_EQ(allocation_count.load() - control_start, 1);
+
+  const NurbsCurve curve = testing::random_rational_curve(3, 61);
+  const NurbsSurface surface = testing::random_rational_surface(3, 3, 62, false, true);
+  CurveJacobian curve_result;
+  SurfaceJacobian surface_result;
+  CurveDerivatives curve_derivatives;
+  SurfaceDerivatives surface_derivatives;
+  double checksum = 0.0;
+  const long before = allocation_count.load();
+  for (int i = 0; i < 1000; ++i) {
+    const double u = (i + 0.5) / 1000.0;
+    curve_jacobian(curve, u, 2, WeightMode::kFree, curve_result);
+    surface_jacobian(surface, u, 1.0 - u, 2, WeightMode::kFree, surface_result);
+    curve.derivatives(u, 2, curve_derivatives);
+    surface.derivatives(u, 1.0 - u, 2, surface_derivatives);
+    checksum += curve.point(u).x() + surface.point(u, u).y() + curve_result.basis(2, 1) +
+                surface_result.weight_column[4](0, 3) + curve_derivatives(1, 0) +
+                surface_derivatives(1, 1).z();
+  }
+  EXPECT_EQ(allocation_count.load() - before, 0);
+  EXPECT_TRUE(std::isfinite(checksum));
+}
+
+}  // namespace
+}  // namespace dnurbs
