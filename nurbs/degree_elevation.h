@@ -1,0 +1,27 @@
+#pragma once
+// Degree elevation of NURBS curves and surfaces: the same shape in a basis of higher degree
+// (Piegl & Tiller, The NURBS Book, A5.9), done on homogeneous control points (w P, w).
+
+#include "nurbs/knot_insertion.h"
+#include "nurbs/nurbs_curve.h"
+#include "nurbs/nurbs_surface.h"
+
+namespace dnurbs {
+
+/// Raises the degree of a curve from p to p + degree_increase without changing the curve; every
+/// distinct knot's multiplicity grows by degree_increase (so the continuity at it is kept).
+///
+/// Open curves need a clamped knot vector (end knots repeated p + 1 times) and use P&T A5.9.
+/// Periodic curves give a periodic curve of degree p + degree_increase over the same period; its
+/// control points are found by collocation at the Greville abscissae of the new basis (exact up
+/// to round-off, since the elevated curve lies in the new spline space).
+/// degree_increase = 0 returns the curve unchanged. Throws Error naming the value if
+/// degree_increase < 0, p + degree_increase > kMaxDegree, or an open knot vector is not clamped.
+NurbsCurve elevate_degree(const NurbsCurve& curve, int degree_increase);
+
+/// Raises the degree along `direction` (kU: p, kV: q) by degree_increase, applied to every row
+/// or column of the control net; the surface does not change. Same rules as the curve version.
+NurbsSurface elevate_degree(const NurbsSurface& surface, SurfaceDirection direction,
+                            int degree_increase);
+
+}  // namespace dnurbs

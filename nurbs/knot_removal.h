@@ -1,0 +1,49 @@
+#pragma once
+// Tolerance-bounded knot removal of open NURBS curves and surfaces (Piegl & Tiller, The NURBS
+// Book, A5.8 and eq. 5.30), done on homogeneous control points (w P, w).
+
+#include "nurbs/knot_insertion.h"
+#include "nurbs/nurbs_curve.h"
+#include "nurbs/nurbs_surface.h"
+
+namespace dnurbs {
+
+/// The outcome of removing a knot from a curve.
+struct CurveKnotRemoval {
+  /// The curve with the knot removed `removed_count` times (the input curve if 0).
+  NurbsCurve curve;
+  /// How many times the knot was removed, 0..requested.
+  int removed_count = 0;
+  /// True if the knot was removed as many times as requested.
+  bool succeeded = false;
+};
+
+/// The outcome of removing a knot from a surface along one direction.
+struct SurfaceKnotRemoval {
+  /// The surface with the knot removed `removed_count` times (the input surface if 0).
+  NurbsSurface surface;
+  int removed_count = 0;
+  bool succeeded = false;
+};
+
+/// Piegl & Tiller A5.8: removes the interior knot u up to `times` times, each removal only if
+/// the curve moves by at most `tolerance` (a distance in model units). For a rational curve the
+/// homogeneous control points are compared against tolerance * w_min / (1 + |P|_max) (P&T
+/// eq. 5.30), which bounds the distance the same way. The bound holds for every removal step, so
+/// removing a knot j times moves the curve by at most j * tolerance. Removal stops at the first
+/// step that fails; the removals before it are kept.
+///
+/// Throws Error naming the value if the curve is periodic (removal supports open shapes), u is
+/// not an interior knot of the curve, times is outside 1..multiplicity of u, or tolerance is
+/// negative or not finite.
+CurveKnotRemoval remove_knot(const NurbsCurve& curve, double u, int times, double tolerance);
+
+/// Removes the interior knot u along `direction` from every row (kU: every curve of fixed v
+/// index; kV: every curve of fixed u index) of the control net. Each removal step is done only
+/// if every row succeeds within the tolerance (w_min and |P|_max taken over the whole net for a
+/// rational surface). Throws Error like the curve version (a surface periodic along `direction`
+/// is rejected).
+SurfaceKnotRemoval remove_knot(const NurbsSurface& surface, SurfaceDirection direction, double u,
+                               int times, double tolerance);
+
+}  // namespace dnurbs

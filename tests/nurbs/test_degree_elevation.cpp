@@ -1,0 +1,224 @@
+#include "nurbs/degree_elevation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "nurbs/error.h"
+#include "nurbs/primitive_shapes.h"
+
+namespace dnurbs {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A5.9 builds each new point from Bezier elevation coefficients (convex weights) and knot
+// insertion/removal steps on points of size ~1: a few hundred ulps at most. The periodic path
+// solves a collocation system whose condition number is small (~10) for these knots, so its
+// round-off is of the same order. 1e-12 leaves a wide margin over both.
+constexpr double kRoundOff = 1e-12;
+
+void random_control_points(int count, std::mt19937& generator, bool rational,
+                           Eigen::MatrixX3d& points, Eigen::VectorXd& weights) {
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  std::uniform_real_distribution<double> weight(0.5, 2.0);
+  points.resize(count, 3);
+  weights.resize(count);
+  for (int i = 0; i < count; ++i) {
+    points.row(i) << coordinate(generator), coordinate(generator), coordinate(generator);
+    weights[i] = rational ? weight(generator) : 1.0;
+  }
+}
+
+// A clamped curve over [-0.5, 2] with a double knot at 0.4 and single knots at 0.1 and 1.3.
+NurbsCurve random_open_curve(int degree, unsigned seed, bool rational) {
+  std::mt19937 generator(seed);
+  std::vector<double> knots(static_cast<size_t>(degree) + 1, -0.5);
+  knots.insert(knots.end(), {0.1, 0.4, 0.4, 1.3});
+  knots.insert(knots.end(), static_cast<size_t>(degree) + 1, 2.0);
+  KnotVector knot_vector(degree, knots);
+  Eigen::MatrixX3d points;
+  Eigen::VectorXd weights;
+  random_control_points(knot_vector.control_point_count(), generator, rational, points, weights);
+  return {std::move(knot_vector), std::move(points), std::move(weights)};
+}
+
+// A periodic curve over [0.3, 2.3] with uneven spacing and a double knot at 1.1.
+NurbsCurve random_periodic_curve(int degree, unsigned seed, bool rational) {
+  std::mt19937 generator(seed);
+  KnotVector knots =
+      KnotVector::periodic(degree, {0.3, 0.5, 0.8, 1.1, 1.1, 1.4, 1.5, 1.9, 2.05, 2.3});
+  Eigen::MatrixX3d points;
+  Eigen::VectorXd weights;
+  random_control_points(knots.control_point_count(), generator, rational, points, weights);
+  return {std::move(knots), std::move(points), std::move(weights)};
+}
+
+NurbsSurface random_surface(int degree_u, int degree_v, unsigned seed, bool rational,
+                            bool periodic_u) {
+  std::mt19937 generator(seed);
+  KnotVector knots_u = periodic_u
+                           ? KnotVector::periodic(degree_u, {0.0, 0.2, 0.3, 0.55, 0.6, 0.8, 1.0})
+                           : KnotVector::clamped_from_breakpoints(degree_u, {0.0, 0.35, 0.6, 1.0});
+  KnotVector knots_v = KnotVector::clamped_from_breakpoints(degree_v, {-1.0, -0.2, 0.5, 1.0});
+  Eigen::MatrixX3d points;
+  Eigen::VectorXd weights;
+  random_control_points(knots_u.control_point_count() * knots_v.control_point_count(), generator,
+                        rational, points, weights);
+  return {std::move(knots_u), std::move(knots_v), std::move(points), std::move(weights)};
+}
+
+double max_deviation(const NurbsCurve& a, const NurbsCurve& b) {
+  const double start = a.knots().domain_start();
+  const double end = a.knots().domain_end();
+  double worst = 0.0;
+  for (int i = 0; i <= 400; ++i) {
+    const double u = start + (end - start) * i / 400.0;
+    worst = std::max(worst, (a.point(u) - b.point(u)).norm());
+  }
+  return worst;
+}
+
+double max_deviation(const NurbsSurface& a, const NurbsSurface& b) {
+  double worst = 0.0;
+  for (int i = 0; i <= 20; ++i) {
+    const double u = a.knots_u().domain_start() +
+                     (a.knots_u().domain_end() - a.knots_u().domain_start()) * i / 20.0;
+    for (int j = 0; j <= 20; ++j) {
+      const double v = a.knots_v().domain_start() +
+                       (a.knots_v().domain_end() - a.knots_v().domain_start()) * j / 20.0;
+      worst = std::max(worst, (a.point(u, v) - b.point(u, v)).norm());
+    }
+  }
+  return worst;
+}
+
+// Every distinct knot value of `before` appears degree_increase more times in `after`.
+void expect_multiplicities_raised(const KnotVector& before, const KnotVector& after,
+                                  int degree_increase) {
+  for (const double knot : before.knots()) {
+    if (knot >= before.domain_start() && knot <= before.domain_end()) {
+      EXPECT_EQ(after.multiplicity(knot), before.multiplicity(knot) + degree_increase)
+          << "knot " << knot;
+    }
+  }
+}
+
+template <typename Action>
+std::string error_message(Action action) {
+  try {
+    action();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no dnurbs::Error thrown";
+  return {};
+}
+
+TEST(DegreeElevation, LeavesRationalCircleUnchanged) {
+  const NurbsCurve circle = full_circle(1.0);
+  for (const int t : {1, 2, 3}) {
+    const NurbsCurve elevated = elevate_degree(circle, t);
+    EXPECT_EQ(elevated.degree(), 2 + t);
+    expect_multiplicities_raised(circle.knots(), elevated.knots(), t);
+    EXPECT_LT(max_deviation(circle, elevated), kRoundOff) << "t = " << t;
+  }
+}
+
+TEST(DegreeElevation, LeavesRandomCurvesUnchanged) {
+  for (const int degree : {2, 3, 5}) {
+    for (const bool rational : {false, true}) {
+      const NurbsCurve curve = random_open_curve(degree, 201U + degree, rational);
+      for (const int t : {1, 2, 3}) {
+        const NurbsCurve elevated = elevate_degree(curve, t);
+        EXPECT_EQ(elevated.degree(), degree + t);
+        EXPECT_EQ(elevated.is_rational(), rational);
+        // n + t (number of spans + 1): 4 spans here.
+        EXPECT_EQ(elevated.control_point_count(), curve.control_point_count() + t * 4);
+        expect_multiplicities_raised(curve.knots(), elevated.knots(), t);
+        EXPECT_LT(max_deviation(curve, elevated), kRoundOff)
+            << "degree " << degree << " rational " << rational << " t " << t;
+      }
+    }
+  }
+}
+
+TEST(DegreeElevation, QuadraticBezierGivesTheKnownCubicPoints) {
+  // Q_0 = P_0, Q_1 = (P_0 + 2 P_1)/3, Q_2 = (2 P_1 + P_2)/3, Q_3 = P_2 (P&T eq. 5.36).
+  Eigen::MatrixX3d points(3, 3);
+  points << 0.0, 0.0, 0.0, 1.0, 2.0, 0.0, 3.0, 0.0, 1.0;
+  const NurbsCurve bezier(KnotVector::clamped_uniform(2, 3), points);
+  const NurbsCurve cubic = elevate_degree(bezier, 1);
+  Eigen::MatrixX3d expected(4, 3);
+  expected << points.row(0), (points.row(0) + 2.0 * points.row(1)) / 3.0,
+      (2.0 * points.row(1) + points.row(2)) / 3.0, points.row(2);
+  EXPECT_EQ(cubic.knots(), KnotVector::clamped_uniform(3, 4));
+  EXPECT_LT((cubic.control_points() - expected).cwiseAbs().maxCoeff(), 1e-15);  // one rounding
+}
+
+TEST(DegreeElevation, LeavesPeriodicCurvesUnchanged) {
+  for (const int degree : {2, 3, 5}) {
+    for (const bool rational : {false, true}) {
+      const NurbsCurve curve = random_periodic_curve(degree, 211U + degree, rational);
+      for (const int t : {1, 2, 3}) {
+        const NurbsCurve elevated = elevate_degree(curve, t);
+        ASSERT_TRUE(elevated.is_periodic());
+        EXPECT_EQ(elevated.degree(), degree + t);
+        EXPECT_EQ(elevated.knots().domain_start(), curve.knots().domain_start());
+        EXPECT_EQ(elevated.knots().domain_end(), curve.knots().domain_end());
+        // 8 distinct knots per period.
+        EXPECT_EQ(elevated.control_point_count(), curve.control_point_count() + 8 * t);
+        expect_multiplicities_raised(curve.knots(), elevated.knots(), t);
+        EXPECT_LT(max_deviation(curve, elevated), kRoundOff)
+            << "degree " << degree << " rational " << rational << " t " << t;
+      }
+    }
+  }
+}
+
+TEST(DegreeElevation, LeavesSurfacesUnchangedInUAndV) {
+  for (const bool rational : {false, true}) {
+    for (const bool periodic_u : {false, true}) {
+      const NurbsSurface surface = random_surface(3, 2, 221U, rational, periodic_u);
+      for (const int t : {1, 2, 3}) {
+        const NurbsSurface in_u = elevate_degree(surface, SurfaceDirection::kU, t);
+        EXPECT_EQ(in_u.degree_u(), 3 + t);
+        EXPECT_EQ(in_u.knots_v(), surface.knots_v());
+        EXPECT_LT(max_deviation(surface, in_u), kRoundOff)
+            << "rational " << rational << " periodic " << periodic_u << " t " << t;
+        const NurbsSurface in_v = elevate_degree(surface, SurfaceDirection::kV, t);
+        EXPECT_EQ(in_v.degree_v(), 2 + t);
+        EXPECT_EQ(in_v.knots_u(), surface.knots_u());
+        EXPECT_LT(max_deviation(surface, in_v), kRoundOff)
+            << "rational " << rational << " periodic " << periodic_u << " t " << t;
+      }
+    }
+  }
+  const NurbsSurface sphere_surface = sphere(1.0);
+  const NurbsSurface both = elevate_degree(elevate_degree(sphere_surface, SurfaceDirection::kU, 1),
+                                           SurfaceDirection::kV, 2);
+  EXPECT_LT(max_deviation(sphere_surface, both), kRoundOff);
+}
+
+TEST(DegreeElevation, InvalidInputThrowsErrorNamingTheValue) {
+  const NurbsCurve curve = random_open_curve(3, 231U, false);
+  EXPECT_THAT(error_message([&] { elevate_degree(curve, -1); }), HasSubstr("-1"));
+  EXPECT_THAT(error_message([&] { elevate_degree(curve, kMaxDegree); }),
+              HasSubstr("degree " + std::to_string(kMaxDegree + 3)));
+  const NurbsCurve unclamped(KnotVector::uniform(3, 6), Eigen::MatrixX3d::Random(6, 3));
+  EXPECT_THAT(error_message([&] { elevate_degree(unclamped, 1); }), HasSubstr("clamped"));
+  const NurbsSurface surface = random_surface(3, 2, 232U, true, false);
+  EXPECT_THAT(error_message([&] { elevate_degree(surface, SurfaceDirection::kV, 14); }),
+              HasSubstr("degree 16"));
+  // Elevation by 0 is the identity.
+  EXPECT_EQ(elevate_degree(curve, 0).control_points(), curve.control_points());
+}
+
+}  // namespace
+}  // namespace dnurbs

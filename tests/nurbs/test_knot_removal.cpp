@@ -1,0 +1,261 @@
+#include "nurbs/knot_removal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "nurbs/error.h"
+#include "nurbs/knot_insertion.h"
+#include "nurbs/primitive_shapes.h"
+
+namespace dnurbs {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Insertion then removal recomputes each control point from a few convex combinations and their
+// inverses (divisions by alpha and 1 - alpha, which stay >= ~0.05 for these knots): the points
+// come back within a few hundred ulps of values of size ~1, well inside 1e-12.
+constexpr double kRoundOff = 1e-12;
+// Tolerance for removing a knot that was just inserted: the two estimates A5.8 compares differ
+// only by round-off (~1e-15), so any tolerance far above that and far below the shape size works.
+constexpr double kExactRemoval = 1e-9;
+
+void random_control_points(int count, std::mt19937& generator, bool rational,
+                           Eigen::MatrixX3d& points, Eigen::VectorXd& weights) {
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  std::uniform_real_distribution<double> weight(0.5, 2.0);
+  points.resize(count, 3);
+  weights.resize(count);
+  for (int i = 0; i < count; ++i) {
+    points.row(i) << coordinate(generator), coordinate(generator), coordinate(generator);
+    weights[i] = rational ? weight(generator) : 1.0;
+  }
+}
+
+// A clamped curve over [-0.5, 2] with a double knot at 0.4 and single knots at 0.1 and 1.3.
+NurbsCurve random_open_curve(int degree, unsigned seed, bool rational) {
+  std::mt19937 generator(seed);
+  std::vector<double> knots(static_cast<size_t>(degree) + 1, -0.5);
+  knots.insert(knots.end(), {0.1, 0.4, 0.4, 1.3});
+  knots.insert(knots.end(), static_cast<size_t>(degree) + 1, 2.0);
+  KnotVector knot_vector(degree, knots);
+  Eigen::MatrixX3d points;
+  Eigen::VectorXd weights;
+  random_control_points(knot_vector.control_point_count(), generator, rational, points, weights);
+  return {std::move(knot_vector), std::move(points), std::move(weights)};
+}
+
+NurbsSurface random_surface(int degree_u, int degree_v, unsigned seed, bool rational) {
+  std::mt19937 generator(seed);
+  KnotVector knots_u = KnotVector::clamped_from_breakpoints(degree_u, {0.0, 0.35, 0.6, 1.0});
+  KnotVector knots_v = KnotVector::clamped_from_breakpoints(degree_v, {-1.0, -0.2, 0.5, 1.0});
+  Eigen::MatrixX3d points;
+  Eigen::VectorXd weights;
+  random_control_points(knots_u.control_point_count() * knots_v.control_point_count(), generator,
+                        rational, points, weights);
+  return {std::move(knots_u), std::move(knots_v), std::move(points), std::move(weights)};
+}
+
+double max_deviation(const NurbsCurve& a, const NurbsCurve& b) {
+  const double start = a.knots().domain_start();
+  const double end = a.knots().domain_end();
+  double worst = 0.0;
+  for (int i = 0; i <= 400; ++i) {
+    const double u = start + (end - start) * i / 400.0;
+    worst = std::max(worst, (a.point(u) - b.point(u)).norm());
+  }
+  return worst;
+}
+
+double max_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff();
+}
+
+template <typename Action>
+std::string error_message(Action action) {
+  try {
+    action();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no dnurbs::Error thrown";
+  return {};
+}
+
+TEST(KnotRemoval, UndoesInsertionOfCurves) {
+  for (const int degree : {2, 3, 5}) {
+    for (const bool rational : {false, true}) {
+      const NurbsCurve curve = random_open_curve(degree, 101U + degree, rational);
+      // A new knot, the double knot, a single knot and knots 0.05 from the ends, each inserted
+      // up to the degree.
+      for (const double u : {0.25, 0.4, 1.3, -0.45, 1.95}) {
+        const int existing = curve.knots().multiplicity(u);
+        for (int times = 1; existing + times <= degree; ++times) {
+          const NurbsCurve refined = insert_knot(curve, u, times);
+          const CurveKnotRemoval removal = remove_knot(refined, u, times, kExactRemoval);
+          ASSERT_TRUE(removal.succeeded) << "degree " << degree << " u " << u << " x" << times;
+          EXPECT_EQ(removal.removed_count, times);
+          EXPECT_EQ(removal.curve.knots(), curve.knots());
+          EXPECT_LT(max_difference(removal.curve.control_points(), curve.control_points()),
+                    kRoundOff);
+          EXPECT_LT(max_difference(removal.curve.weights(), curve.weights()), kRoundOff);
+        }
+      }
+    }
+  }
+}
+
+TEST(KnotRemoval, NearAnEndUndoesInsertionUpToItsConditioning) {
+  // 1e-3 from a clamped end, A5.8 divides by alpha_i = (u - t_i) / (t_{i+p+1} - t_i) ~ 4e-4 in
+  // the recursion from that end, so the round-off of ~1e-16 grows by ~1e3 per removal: 1e-9
+  // bounds one or two removals with a wide margin. (Removing p copies 1e-3 from an end, or one
+  // copy 1e-9 from it, grows the round-off beyond a 1e-9 removal tolerance and the removal is
+  // refused: that is the conditioning of A5.8, not a loss of exactness of the curve.)
+  constexpr double kConditionedRoundOff = 1e-9;
+  for (const int degree : {3, 5}) {
+    const NurbsCurve curve = random_open_curve(degree, 171U + degree, true);
+    for (const double u : {-0.499, 1.999}) {
+      for (const int times : {1, 2}) {
+        const NurbsCurve refined = insert_knot(curve, u, times);
+        const CurveKnotRemoval removal = remove_knot(refined, u, times, kExactRemoval);
+        ASSERT_TRUE(removal.succeeded) << "degree " << degree << " u " << u << " x" << times;
+        EXPECT_EQ(removal.curve.knots(), curve.knots());
+        EXPECT_LT(max_difference(removal.curve.control_points(), curve.control_points()),
+                  kConditionedRoundOff);
+        EXPECT_LT(max_difference(removal.curve.weights(), curve.weights()), kConditionedRoundOff);
+      }
+    }
+  }
+}
+
+TEST(KnotRemoval, UndoesInsertionOnRationalCircle) {
+  const NurbsCurve circle = full_circle(1.5);
+  for (const double u : {0.1, 0.6}) {
+    for (const int times : {1, 2}) {
+      const CurveKnotRemoval removal =
+          remove_knot(insert_knot(circle, u, times), u, times, kExactRemoval);
+      ASSERT_TRUE(removal.succeeded);
+      EXPECT_EQ(removal.curve.knots(), circle.knots());
+      EXPECT_LT(max_difference(removal.curve.control_points(), circle.control_points()), kRoundOff);
+      EXPECT_LT(max_difference(removal.curve.weights(), circle.weights()), kRoundOff);
+    }
+  }
+}
+
+TEST(KnotRemoval, EssentialKnotReportsFailureAndKeepsCurve) {
+  // A random cubic is not C^3 at its knots, and the circle's double knots carry its corners:
+  // removing them would move the curve by ~0.1, far above the tolerance.
+  const NurbsCurve cubic = random_open_curve(3, 111U, true);
+  const NurbsCurve circle = full_circle(1.0);
+  for (const auto& [curve, u] : {std::pair{cubic, 1.3}, std::pair{cubic, 0.4},
+                                 std::pair{circle, 0.25}, std::pair{circle, 0.5}}) {
+    const CurveKnotRemoval removal = remove_knot(curve, u, 1, 1e-6);
+    EXPECT_FALSE(removal.succeeded) << "u " << u;
+    EXPECT_EQ(removal.removed_count, 0);
+    EXPECT_EQ(removal.curve.knots(), curve.knots());
+    EXPECT_EQ(removal.curve.control_points(), curve.control_points());
+    EXPECT_EQ(removal.curve.weights(), curve.weights());
+  }
+}
+
+TEST(KnotRemoval, StopsAtTheFirstStepThatFails) {
+  // 1.3 inserted once more: the inserted copy goes, the original one stays.
+  const NurbsCurve curve = random_open_curve(3, 121U, true);
+  const CurveKnotRemoval removal = remove_knot(insert_knot(curve, 1.3), 1.3, 2, kExactRemoval);
+  EXPECT_FALSE(removal.succeeded);
+  EXPECT_EQ(removal.removed_count, 1);
+  EXPECT_EQ(removal.curve.knots(), curve.knots());
+  EXPECT_LT(max_difference(removal.curve.control_points(), curve.control_points()), kRoundOff);
+}
+
+TEST(KnotRemoval, MovesTheCurveByAtMostTheTolerance) {
+  std::mt19937 generator(131U);
+  std::normal_distribution<double> noise(0.0, 1e-5);
+  for (const bool rational : {false, true}) {
+    // A removable knot made slightly non-removable by 1e-5 noise on the control points.
+    const NurbsCurve refined = insert_knot(random_open_curve(3, 131U, rational), 0.9);
+    Eigen::MatrixX3d points = refined.control_points();
+    for (Eigen::Index i = 0; i < points.size(); ++i) {
+      points.data()[i] += noise(generator);
+    }
+    const NurbsCurve noisy(refined.knots(), points, refined.weights());
+    // The bound A5.8 checks (P&T eq. 5.30) guarantees a deviation below the tolerance.
+    const double tolerance = 1e-3;
+    const CurveKnotRemoval removal = remove_knot(noisy, 0.9, 1, tolerance);
+    ASSERT_TRUE(removal.succeeded) << "rational " << rational;
+    const double deviation = max_deviation(noisy, removal.curve);
+    EXPECT_GT(deviation, 0.0);
+    EXPECT_LE(deviation, tolerance) << "rational " << rational;
+    // A tolerance below the noise refuses.
+    EXPECT_FALSE(remove_knot(noisy, 0.9, 1, 1e-9).succeeded);
+  }
+}
+
+TEST(KnotRemoval, InvalidInputThrowsErrorNamingTheValue) {
+  const NurbsCurve curve = random_open_curve(3, 141U, false);
+  EXPECT_THAT(error_message([&] { remove_knot(curve, 0.3, 1, 1e-6); }), HasSubstr("knot 0.3"));
+  EXPECT_THAT(error_message([&] { remove_knot(curve, 2.0, 1, 1e-6); }), HasSubstr("knot 2 "));
+  EXPECT_THAT(error_message([&] { remove_knot(curve, -0.75, 1, 1e-6); }), HasSubstr("-0.75"));
+  EXPECT_THAT(error_message([&] { remove_knot(curve, 0.4, 3, 1e-6); }),
+              HasSubstr("removed 3 times"));
+  EXPECT_THAT(error_message([&] { remove_knot(curve, 0.4, 0, 1e-6); }),
+              HasSubstr("removed 0 times"));
+  EXPECT_THAT(error_message([&] { remove_knot(curve, 0.4, 1, -0.5); }), HasSubstr("-0.5"));
+  EXPECT_THAT(
+      error_message([&] { remove_knot(curve, 0.4, 1, std::numeric_limits<double>::quiet_NaN()); }),
+      HasSubstr("nan"));
+  const NurbsCurve periodic(KnotVector::periodic_uniform(3, 6), Eigen::MatrixX3d::Random(6, 3));
+  EXPECT_THAT(error_message([&] { remove_knot(periodic, 0.5, 1, 1e-6); }),
+              HasSubstr("supports open shapes"));
+}
+
+TEST(SurfaceKnotRemoval, UndoesInsertionInUAndV) {
+  for (const bool rational : {false, true}) {
+    const NurbsSurface surface = random_surface(3, 4, 151U, rational);
+    for (const auto& [direction, u] :
+         {std::pair{SurfaceDirection::kU, 0.35}, std::pair{SurfaceDirection::kU, 0.8},
+          std::pair{SurfaceDirection::kV, -0.2}, std::pair{SurfaceDirection::kV, 0.9}}) {
+      const NurbsSurface refined = insert_knot(surface, direction, u, 2);
+      const SurfaceKnotRemoval removal = remove_knot(refined, direction, u, 2, kExactRemoval);
+      ASSERT_TRUE(removal.succeeded) << "rational " << rational << " u " << u;
+      EXPECT_EQ(removal.removed_count, 2);
+      EXPECT_EQ(removal.surface.knots_u(), surface.knots_u());
+      EXPECT_EQ(removal.surface.knots_v(), surface.knots_v());
+      EXPECT_LT(max_difference(removal.surface.control_points(), surface.control_points()),
+                kRoundOff);
+      EXPECT_LT(max_difference(removal.surface.weights(), surface.weights()), kRoundOff);
+    }
+  }
+}
+
+TEST(SurfaceKnotRemoval, FailsUnlessEveryRowSucceeds) {
+  const NurbsSurface surface = random_surface(3, 3, 161U, true);
+  const double u = 0.8;
+  const NurbsSurface refined = insert_knot(surface, SurfaceDirection::kU, u);
+  // Move one of the new control points (u index k - 1 of span k) of the curve with v index 2.
+  const int k = surface.knots_u().find_span(u);
+  Eigen::MatrixX3d points = refined.control_points();
+  points.row(refined.control_point_index(k - 1, 2)) += Eigen::RowVector3d(0.0, 1e-3, 0.0);
+  const NurbsSurface bumped(refined.knots_u(), refined.knots_v(), points, refined.weights());
+  const SurfaceKnotRemoval removal = remove_knot(bumped, SurfaceDirection::kU, u, 1, 1e-6);
+  EXPECT_FALSE(removal.succeeded);
+  EXPECT_EQ(removal.removed_count, 0);
+  EXPECT_EQ(removal.surface.knots_u(), bumped.knots_u());
+  EXPECT_EQ(removal.surface.control_points(), bumped.control_points());
+  EXPECT_EQ(removal.surface.weights(), bumped.weights());
+  // Without the bump every row succeeds.
+  EXPECT_TRUE(remove_knot(refined, SurfaceDirection::kU, u, 1, 1e-6).succeeded);
+  EXPECT_THAT(error_message([&] { remove_knot(refined, SurfaceDirection::kV, 0.125, 1, 1e-6); }),
+              HasSubstr("knot 0.125"));
+}
+
+}  // namespace
+}  // namespace dnurbs
