@@ -231,3 +231,152 @@ Eigen::SparseMatrix<double> to_sparse_matrix(const SurfaceJacobian& jacobian,
 }
 
 }  // namespace dnurbs
+
+namespace dnurbs {
+namespace {
+
+// Second directional derivatives of x^(alpha) = A^(alpha) / W along (dP, dw). With
+// A^(alpha) = sum_{beta<=alpha} C(alpha,beta) W^(beta) x^(alpha-beta) (Leibniz), A bilinear in
+// (w, P) and W linear in w, differentiating once and twice gives
+//   W Dx   = DA  - sum_{beta} C DW^(beta) x^(alpha-beta)      - sum_{beta>0} C W^(beta) Dx^(..)
+//   W D2x  = D2A - sum_{beta} 2 C DW^(beta) Dx^(alpha-beta)   - sum_{beta>0} C W^(beta) D2x^(..)
+// with DA = sum B (dw P + w dP), D2A = 2 sum B dw dP, DW = sum B dw.
+using ActiveScalars = std::array<double, SurfaceJacobian::kMaxActive>;
+using ActivePoints = std::array<Eigen::Vector3d, SurfaceJacobian::kMaxActive>;
+
+template <size_t N, typename BasisMatrix>
+void rational_second_directional(const std::array<MultiIndex, N>& indices, int quantities,
+                                 int active, const BasisMatrix& nonrational, const ActiveScalars& w,
+                                 const ActivePoints& P, const ActiveScalars& dw,
+                                 const ActivePoints& dP, std::array<Eigen::Vector3d, N>& second) {
+  std::array<double, N> W{};
+  std::array<double, N> DW{};
+  std::array<Eigen::Vector3d, N> A;
+  std::array<Eigen::Vector3d, N> DA;
+  std::array<Eigen::Vector3d, N> D2A;
+  std::array<Eigen::Vector3d, N> x;
+  std::array<Eigen::Vector3d, N> Dx;
+  for (int q = 0; q < quantities; ++q) {
+    const auto s = static_cast<size_t>(q);
+    A[s].setZero();
+    DA[s].setZero();
+    D2A[s].setZero();
+    for (int a = 0; a < active; ++a) {
+      const auto t = static_cast<size_t>(a);
+      const double B = nonrational(q, a);
+      W[s] += B * w[t];
+      DW[s] += B * dw[t];
+      A[s] += B * w[t] * P[t];
+      DA[s] += B * (dw[t] * P[t] + w[t] * dP[t]);
+      D2A[s] += 2.0 * B * dw[t] * dP[t];
+    }
+  }
+  for (int q = 0; q < quantities; ++q) {
+    const MultiIndex alpha = indices[static_cast<size_t>(q)];
+    Eigen::Vector3d value = A[static_cast<size_t>(q)];
+    Eigen::Vector3d first = DA[static_cast<size_t>(q)];
+    Eigen::Vector3d twice = D2A[static_cast<size_t>(q)];
+    for (int p = 1; p <= q; ++p) {
+      const MultiIndex beta = indices[static_cast<size_t>(p)];
+      if (beta.k > alpha.k || beta.l > alpha.l) {
+        continue;
+      }
+      const auto rest = static_cast<size_t>(position(indices, alpha.k - beta.k, alpha.l - beta.l));
+      const double c = multi_binomial(alpha, beta);
+      const auto b = static_cast<size_t>(p);
+      value -= c * W[b] * x[rest];
+      first -= c * (W[b] * Dx[rest] + DW[b] * x[rest]);
+      twice -= c * (W[b] * second[rest] + 2.0 * DW[b] * Dx[rest]);
+    }
+    // The beta = 0 terms of Dx and D2x involve x^(alpha) and Dx^(alpha) themselves.
+    const auto s = static_cast<size_t>(q);
+    x[s] = value / W[0];
+    Dx[s] = (first - DW[0] * x[s]) / W[0];
+    second[s] = (twice - 2.0 * DW[0] * Dx[s]) / W[0];
+  }
+}
+
+}  // namespace
+
+void curve_jacobian_rate(const NurbsCurve& curve, double u, int order,
+                         const Eigen::MatrixX3d& point_rates, const Eigen::VectorXd& weight_rates,
+                         CurveDerivatives& result) {
+  const int quantities = quantity_count(order, false);
+  if (point_rates.rows() != curve.control_point_count() ||
+      weight_rates.size() != curve.control_point_count()) {
+    throw make_error("curve_jacobian_rate needs ", curve.control_point_count(),
+                     " point and weight rates, got ", point_rates.rows(), " and ",
+                     weight_rates.size());
+  }
+  const KnotVector& knots = curve.knots();
+  const int span = knots.find_span(u);
+  BasisDerivatives basis;
+  basis_functions_with_derivatives(knots, span, knots.to_domain(u), order, basis);
+  const int active = curve.degree() + 1;
+  ActiveScalars w{};
+  ActiveScalars dw{};
+  ActivePoints P;
+  ActivePoints dP;
+  for (int a = 0; a < active; ++a) {
+    const int index = knots.control_point_index(span, a);
+    const auto t = static_cast<size_t>(a);
+    w[t] = curve.weights()[index];
+    dw[t] = weight_rates[index];
+    P[t] = curve.control_points().row(index).transpose();
+    dP[t] = point_rates.row(index).transpose();
+  }
+  std::array<Eigen::Vector3d, 3> second;
+  rational_second_directional(kCurveIndices, quantities, active, basis, w, P, dw, dP, second);
+  result.resize(quantities, 3);
+  for (int q = 0; q < quantities; ++q) {
+    result.row(q) = second[static_cast<size_t>(q)].transpose();
+  }
+}
+
+void surface_jacobian_rate(const NurbsSurface& surface, double u, double v, int order,
+                           const Eigen::MatrixX3d& point_rates, const Eigen::VectorXd& weight_rates,
+                           std::array<Eigen::Vector3d, 6>& result) {
+  const int quantities = quantity_count(order, true);
+  if (point_rates.rows() != surface.control_point_count() ||
+      weight_rates.size() != surface.control_point_count()) {
+    throw make_error("surface_jacobian_rate needs ", surface.control_point_count(),
+                     " point and weight rates, got ", point_rates.rows(), " and ",
+                     weight_rates.size());
+  }
+  const KnotVector& knots_u = surface.knots_u();
+  const KnotVector& knots_v = surface.knots_v();
+  const int span_u = knots_u.find_span(u);
+  const int span_v = knots_v.find_span(v);
+  BasisDerivatives basis_u;
+  BasisDerivatives basis_v;
+  basis_functions_with_derivatives(knots_u, span_u, knots_u.to_domain(u), order, basis_u);
+  basis_functions_with_derivatives(knots_v, span_v, knots_v.to_domain(v), order, basis_v);
+  const int q_degree = surface.degree_v();
+  const int active = (surface.degree_u() + 1) * (q_degree + 1);
+  ActiveScalars w{};
+  ActiveScalars dw{};
+  ActivePoints P;
+  ActivePoints dP;
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, SurfaceJacobian::kMaxActive> nonrational(6,
+                                                                                          active);
+  for (int a = 0; a <= surface.degree_u(); ++a) {
+    const int i = knots_u.control_point_index(span_u, a);
+    for (int b = 0; b <= q_degree; ++b) {
+      const int local = a * (q_degree + 1) + b;
+      const int index = surface.control_point_index(i, knots_v.control_point_index(span_v, b));
+      const auto t = static_cast<size_t>(local);
+      w[t] = surface.weights()[index];
+      dw[t] = weight_rates[index];
+      P[t] = surface.control_points().row(index).transpose();
+      dP[t] = point_rates.row(index).transpose();
+      for (int quantity = 0; quantity < quantities; ++quantity) {
+        const MultiIndex alpha = kSurfaceIndices[static_cast<size_t>(quantity)];
+        nonrational(quantity, local) = basis_u(alpha.k, a) * basis_v(alpha.l, b);
+      }
+    }
+  }
+  rational_second_directional(kSurfaceIndices, quantities, active, nonrational, w, P, dw, dP,
+                              result);
+}
+
+}  // namespace dnurbs

@@ -64,6 +64,20 @@ void curve_jacobian(const NurbsCurve& curve, double u, int order, WeightMode mod
 void surface_jacobian(const NurbsSurface& surface, double u, double v, int order, WeightMode mode,
                       SurfaceJacobian& jacobian);
 
+/// Jdot qd for every quantity d = 0..order (curves) or every SurfaceQuantity of total order <=
+/// order (surfaces): the second directional derivative sum_kl d^2 x^(d) / dq_k dq_l qd_k qd_l of
+/// the point or parametric derivative in the coordinate direction qd, given as the rates of all
+/// control points (`point_rates`, control_point_count by 3) and of all weights (`weight_rates`,
+/// control_point_count; zero for fixed weights). It is the velocity-product part of
+/// d^2 x^(d) / dt^2 = J qdd + Jdot qd, which constraints need (seed 001 eq 1.40's sigma). Zero
+/// when weight_rates is zero. Results: curve rows d, surface entries by SurfaceQuantity.
+void curve_jacobian_rate(const NurbsCurve& curve, double u, int order,
+                         const Eigen::MatrixX3d& point_rates, const Eigen::VectorXd& weight_rates,
+                         CurveDerivatives& result);
+void surface_jacobian_rate(const NurbsSurface& surface, double u, double v, int order,
+                           const Eigen::MatrixX3d& point_rates, const Eigen::VectorXd& weight_rates,
+                           std::array<Eigen::Vector3d, 6>& result);
+
 /// The 3 by #coordinates sparse matrix of one quantity, coordinates laid out as in WeightMode.
 Eigen::SparseMatrix<double> to_sparse_matrix(const CurveJacobian& jacobian, CurveQuantity quantity,
                                              WeightMode mode, int control_point_count);

@@ -1,5 +1,7 @@
 #include "nurbs/jacobian.h"
 
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include "nurbs/primitive_shapes.h"
@@ -138,6 +140,71 @@ TEST(SurfaceJacobian, MatchesFiniteDifferencesForFixedAndFreeWeights) {
   expect_surface_jacobians_match(testing::random_rational_surface(2, 3, 51));
   expect_surface_jacobians_match(testing::random_rational_surface(3, 2, 52, true, false));
   expect_surface_jacobians_match(sphere(1.0));
+}
+
+}  // namespace
+}  // namespace dnurbs
+
+namespace dnurbs {
+namespace {
+
+// Jdot qd is the second derivative of x^(d)(q + t qd) at t = 0; compare with a central second
+// difference (error h^2 |d^4 x / dt^4| / 12 plus rounding eps |x| / h^2 ~ 1e-8 for h = 1e-4).
+TEST(JacobianRate, MatchesSecondDifferencesAlongTheVelocity) {
+  const NurbsSurface surface = testing::random_rational_surface(3, 2, 71);
+  const NurbsCurve curve = testing::random_rational_curve(3, 72);
+  std::mt19937 generator(73);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const auto random_rates = [&](int count) {
+    Eigen::MatrixX3d points(count, 3);
+    Eigen::VectorXd weights(count);
+    for (int i = 0; i < count; ++i) {
+      points.row(i) << normal(generator), normal(generator), normal(generator);
+      weights[i] = 0.3 * normal(generator);
+    }
+    return std::make_pair(points, weights);
+  };
+  const double h = 1e-4;
+  const auto [surface_points, surface_weights] = random_rates(surface.control_point_count());
+  const auto moved_surface = [&](double t) {
+    NurbsSurface moved = surface;
+    moved.set_control_points(surface.control_points() + t * surface_points);
+    moved.set_weights(surface.weights() + t * surface_weights);
+    return moved;
+  };
+  std::array<Eigen::Vector3d, 6> rates;
+  surface_jacobian_rate(surface, 0.37, 0.61, 2, surface_points, surface_weights, rates);
+  const std::array<std::pair<int, int>, 6> orders = {
+      {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}}};
+  for (int quantity = 0; quantity < 6; ++quantity) {
+    const auto [k, l] = orders[static_cast<size_t>(quantity)];
+    const auto value = [&](double t) { return moved_surface(t).derivatives(0.37, 0.61, 2)(k, l); };
+    const Eigen::Vector3d expected = (value(h) - 2.0 * value(0.0) + value(-h)) / (h * h);
+    EXPECT_LT((rates[static_cast<size_t>(quantity)] - expected).norm(),
+              1e-5 * (1.0 + expected.norm()))
+        << "quantity " << quantity;
+  }
+  const auto [curve_points, curve_weights] = random_rates(curve.control_point_count());
+  CurveDerivatives curve_rates;
+  curve_jacobian_rate(curve, 0.52, 2, curve_points, curve_weights, curve_rates);
+  for (int order = 0; order <= 2; ++order) {
+    const auto value = [&](double t) {
+      NurbsCurve moved = curve;
+      moved.set_control_points(curve.control_points() + t * curve_points);
+      moved.set_weights(curve.weights() + t * curve_weights);
+      return Eigen::Vector3d(moved.derivatives(0.52, 2).row(order).transpose());
+    };
+    const Eigen::Vector3d expected = (value(h) - 2.0 * value(0.0) + value(-h)) / (h * h);
+    EXPECT_LT((curve_rates.row(order).transpose() - expected).norm(),
+              1e-5 * (1.0 + expected.norm()))
+        << "order " << order;
+  }
+  // Without weight rates the point is linear in the control points: Jdot qd = 0 exactly.
+  surface_jacobian_rate(surface, 0.37, 0.61, 2, surface_points,
+                        Eigen::VectorXd::Zero(surface.control_point_count()), rates);
+  for (const auto& rate : rates) {
+    EXPECT_EQ(rate.norm(), 0.0);
+  }
 }
 
 }  // namespace
