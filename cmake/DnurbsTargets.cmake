@@ -8,12 +8,14 @@ function(dnurbs_add_library folder)
   if(sources)
     add_library(${target} ${sources})
     target_link_libraries(${target} PUBLIC ${ARG_DEPENDS} PRIVATE dnurbs_warnings)
+    target_compile_features(${target} PUBLIC cxx_std_20)
     target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
                                $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/dnurbs>)
     set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder} POSITION_INDEPENDENT_CODE ON)
   else()
     add_library(${target} INTERFACE)
     target_link_libraries(${target} INTERFACE ${ARG_DEPENDS})
+    target_compile_features(${target} INTERFACE cxx_std_20)
     target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
                                $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/dnurbs>)
     set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder})
@@ -45,5 +47,17 @@ function(dnurbs_add_test_folder folder)
   target_compile_definitions(test_${folder} PRIVATE
                              DNURBS_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data"
                              DNURBS_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  gtest_discover_tests(test_${folder} PROPERTIES LABELS "${folder};${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
+  gtest_discover_tests(test_${folder} PROPERTIES LABELS ${folder} DISCOVERY_TIMEOUT 60
+                       TEST_LIST test_${folder}_TESTS)
+  if(ARG_LABELS)
+    # gtest_discover_tests splits a list-valued LABELS property, so extra labels are set by a
+    # script that ctest runs after the discovered tests are defined.
+    string(REPLACE ";" "\\;" labels "${folder};${ARG_LABELS}")
+    set(script "${CMAKE_CURRENT_BINARY_DIR}/test_${folder}_labels.cmake")
+    file(WRITE "${script}"
+         "foreach(test IN LISTS test_${folder}_TESTS)\n"
+         "  set_tests_properties(\"\${test}\" PROPERTIES LABELS \"${labels}\")\n"
+         "endforeach()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${script}")
+  endif()
 endfunction()

@@ -1,0 +1,244 @@
+#include "io/mesh_export.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <memory>
+#include <system_error>
+#include <utility>
+
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/material.h>
+#include <assimp/scene.h>
+#include <assimp/Exporter.hpp>
+
+#include "io/atomic_write.h"
+#include "nurbs/error.h"
+
+namespace dnurbs {
+namespace {
+
+// An assimp file system that sends every file opened for writing to a temporary sibling and
+// remembers where it belongs, so that the export becomes visible only by the final renames.
+class TemporaryFileSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    const std::string open_mode = mode;
+    if (open_mode.find_first_of("wa") == std::string::npos) {
+      return Assimp::DefaultIOSystem::Open(file, mode);
+    }
+    const std::filesystem::path target = file;
+    const std::filesystem::path temporary = temporary_sibling_path(target);
+    Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(temporary.string().c_str(), mode);
+    if (stream != nullptr) {
+      files_.emplace_back(temporary, target);
+    }
+    return stream;
+  }
+
+  // (temporary, target) of every file written so far
+  const std::vector<std::pair<std::filesystem::path, std::filesystem::path>>& files() const {
+    return files_;
+  }
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;
+};
+
+void remove_temporaries(const TemporaryFileSystem& file_system) {
+  for (const auto& [temporary, target] : file_system.files()) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+  }
+}
+
+// Diffuse colours given to the meshes in turn
+constexpr std::array<std::array<float, 3>, 6> kPalette = {{{0.80f, 0.52f, 0.25f},
+                                                           {0.30f, 0.55f, 0.80f},
+                                                           {0.45f, 0.70f, 0.35f},
+                                                           {0.75f, 0.35f, 0.45f},
+                                                           {0.60f, 0.50f, 0.75f},
+                                                           {0.70f, 0.70f, 0.70f}}};
+
+void check_mesh(const TriangleMesh& mesh, size_t index) {
+  const auto name = "mesh " + std::to_string(index) + " (\"" + mesh.name + "\")";
+  if (mesh.normals.rows() != 0 && mesh.normals.rows() != mesh.vertices.rows()) {
+    throw make_error(name, " has ", mesh.normals.rows(), " normals for ", mesh.vertices.rows(),
+                     " vertices");
+  }
+  if (mesh.uv.rows() != 0 && mesh.uv.rows() != mesh.vertices.rows()) {
+    throw make_error(name, " has ", mesh.uv.rows(), " texture coordinates for ",
+                     mesh.vertices.rows(), " vertices");
+  }
+  if (mesh.triangles.size() > 0 &&
+      (mesh.triangles.minCoeff() < 0 || mesh.triangles.maxCoeff() >= mesh.vertices.rows())) {
+    throw make_error(name, " has a triangle index outside 0..", mesh.vertices.rows() - 1);
+  }
+  if (!mesh.vertices.allFinite()) {
+    throw make_error(name, " has a non-finite vertex");
+  }
+}
+
+aiMesh* to_assimp_mesh(const TriangleMesh& mesh, unsigned material) {
+  auto result = std::make_unique<aiMesh>();
+  result->mName = aiString(mesh.name);
+  result->mMaterialIndex = material;
+  result->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  const auto vertex_count = static_cast<unsigned>(mesh.vertices.rows());
+  result->mNumVertices = vertex_count;
+  result->mVertices = new aiVector3D[vertex_count];
+  for (unsigned i = 0; i < vertex_count; ++i) {
+    const int row = static_cast<int>(i);
+    result->mVertices[i] = aiVector3D(static_cast<ai_real>(mesh.vertices(row, 0)),
+                                      static_cast<ai_real>(mesh.vertices(row, 1)),
+                                      static_cast<ai_real>(mesh.vertices(row, 2)));
+  }
+  if (mesh.normals.rows() == mesh.vertices.rows() && vertex_count > 0) {
+    result->mNormals = new aiVector3D[vertex_count];
+    for (unsigned i = 0; i < vertex_count; ++i) {
+      const int row = static_cast<int>(i);
+      result->mNormals[i] = aiVector3D(static_cast<ai_real>(mesh.normals(row, 0)),
+                                       static_cast<ai_real>(mesh.normals(row, 1)),
+                                       static_cast<ai_real>(mesh.normals(row, 2)));
+    }
+  }
+  if (mesh.uv.rows() == mesh.vertices.rows() && vertex_count > 0) {
+    result->mTextureCoords[0] = new aiVector3D[vertex_count];
+    result->mNumUVComponents[0] = 2;
+    for (unsigned i = 0; i < vertex_count; ++i) {
+      const int row = static_cast<int>(i);
+      result->mTextureCoords[0][i] = aiVector3D(static_cast<ai_real>(mesh.uv(row, 0)),
+                                                static_cast<ai_real>(mesh.uv(row, 1)), 0);
+    }
+  }
+  const auto face_count = static_cast<unsigned>(mesh.triangles.rows());
+  result->mNumFaces = face_count;
+  result->mFaces = new aiFace[face_count];
+  for (unsigned f = 0; f < face_count; ++f) {
+    aiFace& face = result->mFaces[f];
+    face.mNumIndices = 3;
+    face.mIndices = new unsigned[3];
+    for (int k = 0; k < 3; ++k) {
+      face.mIndices[k] = static_cast<unsigned>(mesh.triangles(static_cast<int>(f), k));
+    }
+  }
+  return result.release();
+}
+
+aiMaterial* make_material(const std::string& name, size_t index) {
+  auto material = std::make_unique<aiMaterial>();
+  const aiString material_name(name);
+  material->AddProperty(&material_name, AI_MATKEY_NAME);
+  const auto& rgb = kPalette[index % kPalette.size()];
+  const aiColor3D diffuse(rgb[0], rgb[1], rgb[2]);
+  material->AddProperty(&diffuse, 1, AI_MATKEY_COLOR_DIFFUSE);
+  const aiColor4D base(rgb[0], rgb[1], rgb[2], 1.0f);
+  material->AddProperty(&base, 1, AI_MATKEY_BASE_COLOR);
+  return material.release();
+}
+
+// One mesh, one material and one child node of the root per TriangleMesh
+std::unique_ptr<aiScene> build_scene(const std::vector<TriangleMesh>& meshes) {
+  auto scene = std::make_unique<aiScene>();
+  const auto count = static_cast<unsigned>(meshes.size());
+  scene->mRootNode = new aiNode("dnurbs");
+  scene->mNumMeshes = count;
+  scene->mMeshes = new aiMesh*[count]();
+  scene->mNumMaterials = count;
+  scene->mMaterials = new aiMaterial*[count]();
+  scene->mRootNode->mNumChildren = count;
+  scene->mRootNode->mChildren = new aiNode*[count]();
+  for (unsigned i = 0; i < count; ++i) {
+    const TriangleMesh& mesh = meshes[i];
+    const std::string name = mesh.name.empty() ? "mesh_" + std::to_string(i) : mesh.name;
+    TriangleMesh named = mesh;
+    named.name = name;
+    scene->mMeshes[i] = to_assimp_mesh(named, i);
+    scene->mMaterials[i] = make_material(name + "_material", i);
+    auto* node = new aiNode(name);
+    node->mParent = scene->mRootNode;
+    node->mNumMeshes = 1;
+    node->mMeshes = new unsigned[1]{i};
+    scene->mRootNode->mChildren[i] = node;
+  }
+  return scene;
+}
+
+}  // namespace
+
+MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".obj") {
+    return MeshFormat::kObj;
+  }
+  if (extension == ".stl") {
+    return MeshFormat::kStl;
+  }
+  if (extension == ".ply") {
+    return MeshFormat::kPly;
+  }
+  if (extension == ".gltf") {
+    return MeshFormat::kGltf;
+  }
+  if (extension == ".glb") {
+    return MeshFormat::kGlb;
+  }
+  throw make_error(path.string(), ": unknown mesh file extension \"", path.extension().string(),
+                   "\" (expected .obj, .stl, .ply, .gltf or .glb)");
+}
+
+std::string assimp_format_id(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::kObj:
+      return "obj";
+    case MeshFormat::kStl:
+      return "stlb";
+    case MeshFormat::kPly:
+      return "plyb";
+    case MeshFormat::kGltf:
+      return "gltf2";
+    case MeshFormat::kGlb:
+      return "glb2";
+  }
+  throw make_error("unknown mesh format ", static_cast<int>(format));
+}
+
+void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesystem::path& path) {
+  const MeshFormat format = mesh_format_from_path(path);
+  if (meshes.empty()) {
+    throw make_error(path.string(), ": no meshes to export");
+  }
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    check_mesh(meshes[i], i);
+  }
+  const std::unique_ptr<aiScene> scene = build_scene(meshes);
+
+  Assimp::Exporter exporter;
+  auto* file_system = new TemporaryFileSystem;
+  exporter.SetIOHandler(file_system);  // the exporter owns it from here on
+  const aiReturn status = exporter.Export(scene.get(), assimp_format_id(format), path.string());
+  if (status != aiReturn_SUCCESS) {
+    remove_temporaries(*file_system);
+    const std::string reason = exporter.GetErrorString();
+    throw make_error(path.string(), ": assimp could not export the meshes",
+                     reason.empty() ? std::string() : ": " + reason);
+  }
+  // Publish every written file by renaming it; on failure remove the rest
+  for (const auto& [temporary, target] : file_system->files()) {
+    std::error_code error;
+    std::filesystem::rename(temporary, target, error);
+    if (error) {
+      remove_temporaries(*file_system);
+      throw make_error(target.string(),
+                       ": cannot rename the exported temporary file to it: ", error.message());
+    }
+  }
+}
+
+void export_mesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
+  export_meshes({mesh}, path);
+}
+
+}  // namespace dnurbs

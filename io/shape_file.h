@@ -1,0 +1,44 @@
+#pragma once
+// Shape files: one NURBS curve or surface as JSON.
+//
+// Curve:   {"type": "nurbs_curve", "degree": p, "knots": [...], "control_points": [[x, y, z], ...],
+//           "weights": [...], "periodic": false}
+// Surface: {"type": "nurbs_surface", "degree_u": p, "degree_v": q, "knots_u": [...],
+//           "knots_v": [...], "control_points": [[[x, y, z], ...], ...], "weights": [[...], ...],
+//           "periodic_u": false, "periodic_v": false}
+//
+// The surface's outer arrays run along u: control_points[i][j] is control point (i, j).
+// "weights" is optional (all 1). With "periodic": true (or "periodic_u"/"periodic_v") the knots
+// are one period's knots t_p..t_{p+n} (KnotVector::periodic) and the control points the n
+// distinct ones; otherwise the knots are the whole open vector (n + p + 1 values).
+
+#include <filesystem>
+#include <string>
+#include <variant>
+
+#include "nurbs/nurbs_curve.h"
+#include "nurbs/nurbs_surface.h"
+
+namespace dnurbs {
+
+/// What a shape file holds.
+using Shape = std::variant<NurbsCurve, NurbsSurface>;
+
+/// Parses shape JSON text. `source` names the text in messages (usually the file name).
+/// Throws Error "<source>: <json path>: <what was expected>" for unparseable JSON (with line and
+/// column), a missing, unknown or mistyped key, a non-finite or non-numeric number, ragged
+/// arrays, counts that do not match the degree and knots, weights <= 0, and (wrapped, with the
+/// key) every knot or weight error of the library.
+Shape parse_shape_json(const std::string& text, const std::string& source = "<string>");
+
+/// Reads a shape file; throws Error as parse_shape_json does, or if the file cannot be read.
+Shape read_shape_file(const std::filesystem::path& path);
+
+/// The shape as JSON text (numbers round-trip exactly; weights are omitted when all are 1).
+std::string shape_to_json(const Shape& shape);
+
+/// Writes shape_to_json to a file (through a temporary file and a rename); throws Error if that
+/// fails.
+void write_shape_file(const std::filesystem::path& path, const Shape& shape);
+
+}  // namespace dnurbs

@@ -1,0 +1,206 @@
+#include "io/mesh_export.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/mesh_import.h"
+#include "nurbs/error.h"
+#include "nurbs/primitive_shapes.h"
+#include "surface/tessellation.h"
+#include "tests/common/periodic_shapes.h"
+
+namespace dnurbs {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("dnurbs_test_mesh_export_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
+std::vector<std::string> file_names(const std::filesystem::path& directory) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<TriangleMesh> sample_meshes() {
+  return {tessellate_surface(testing::periodic_torus(2.0, 0.5), 10, 6, "torus"),
+          tessellate_surface(sphere(0.75), 5, 8, "sphere")};
+}
+
+// Largest distance from a vertex of `from` to the nearest vertex of `to`
+double one_sided_distance(const Eigen::MatrixX3d& from, const Eigen::MatrixX3d& to) {
+  double worst = 0.0;
+  for (int i = 0; i < from.rows(); ++i) {
+    worst = std::max(worst, (to.rowwise() - from.row(i)).rowwise().norm().minCoeff());
+  }
+  return worst;
+}
+
+Eigen::MatrixX3d all_vertices(const std::vector<TriangleMesh>& meshes) {
+  Eigen::Index rows = 0;
+  for (const auto& mesh : meshes) {
+    rows += mesh.vertices.rows();
+  }
+  Eigen::MatrixX3d stacked(rows, 3);
+  Eigen::Index row = 0;
+  for (const auto& mesh : meshes) {
+    stacked.middleRows(row, mesh.vertices.rows()) = mesh.vertices;
+    row += mesh.vertices.rows();
+  }
+  return stacked;
+}
+
+int all_triangles(const std::vector<TriangleMesh>& meshes) {
+  int count = 0;
+  for (const auto& mesh : meshes) {
+    count += mesh.triangle_count();
+  }
+  return count;
+}
+
+class MeshExportRoundTrip : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MeshExportRoundTrip, ImportGivesTheSameVerticesAndTriangles) {
+  const auto directory = fresh_directory("round_trip_" + GetParam());
+  const std::filesystem::path path = directory / ("meshes." + GetParam());
+  const std::vector<TriangleMesh> meshes = sample_meshes();
+  export_meshes(meshes, path);
+  const std::vector<TriangleMesh> imported = import_meshes(path);
+  ASSERT_FALSE(imported.empty());
+  EXPECT_EQ(all_triangles(imported), all_triangles(meshes));
+  // Files store single precision: |x| <= 2.5 rounds by at most 2.5 * 2^-24 ~ 1.5e-7
+  const Eigen::MatrixX3d original = all_vertices(meshes);
+  const Eigen::MatrixX3d read = all_vertices(imported);
+  EXPECT_LT(one_sided_distance(original, read), 1e-6);
+  EXPECT_LT(one_sided_distance(read, original), 1e-6);
+  // Every imported triangle is one of the original triangles (by its corner positions)
+  for (const auto& mesh : imported) {
+    for (int f = 0; f < mesh.triangle_count(); f += 7) {
+      const Eigen::Vector3d centroid =
+          (mesh.vertices.row(mesh.triangles(f, 0)) + mesh.vertices.row(mesh.triangles(f, 1)) +
+           mesh.vertices.row(mesh.triangles(f, 2))) /
+          3.0;
+      double nearest = 1e300;
+      for (const auto& source : meshes) {
+        for (int g = 0; g < source.triangle_count(); ++g) {
+          const Eigen::Vector3d c = (source.vertices.row(source.triangles(g, 0)) +
+                                     source.vertices.row(source.triangles(g, 1)) +
+                                     source.vertices.row(source.triangles(g, 2))) /
+                                    3.0;
+          nearest = std::min(nearest, (c - centroid).norm());
+        }
+      }
+      EXPECT_LT(nearest, 1e-6);
+    }
+  }
+  // No temporary file is left: only the exported file (and its .mtl or .bin)
+  for (const auto& name : file_names(directory)) {
+    EXPECT_THAT(name, ::testing::Not(HasSubstr(".tmp")));
+    EXPECT_THAT(name, ::testing::StartsWith("meshes."));
+  }
+  std::filesystem::remove_all(directory);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, MeshExportRoundTrip,
+                         ::testing::Values("obj", "stl", "ply", "gltf", "glb"));
+
+TEST(MeshExport, ObjKeepsOneObjectPerMeshWithNormalsAndUv) {
+  const auto directory = fresh_directory("obj_objects");
+  const std::vector<TriangleMesh> meshes = sample_meshes();
+  export_meshes(meshes, directory / "two.obj");
+  EXPECT_EQ(file_names(directory), (std::vector<std::string>{"two.mtl", "two.obj"}));
+  const std::vector<TriangleMesh> imported = import_meshes(directory / "two.obj");
+  ASSERT_EQ(imported.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(imported[k].name, meshes[k].name);
+    EXPECT_EQ(imported[k].triangle_count(), meshes[k].triangle_count());
+    ASSERT_EQ(imported[k].normals.rows(), imported[k].vertices.rows());
+    ASSERT_EQ(imported[k].uv.rows(), imported[k].vertices.rows());
+    // Each imported vertex carries the normal and uv of the original vertex at its position
+    // (the torus has no repeated positions; single precision in the file)
+    if (meshes[k].name == "torus") {
+      for (int r = 0; r < imported[k].vertex_count(); ++r) {
+        Eigen::Index nearest = 0;
+        (meshes[k].vertices.rowwise() - imported[k].vertices.row(r))
+            .rowwise()
+            .norm()
+            .minCoeff(&nearest);
+        EXPECT_LT((imported[k].normals.row(r) - meshes[k].normals.row(nearest)).norm(), 1e-6);
+        EXPECT_LT((imported[k].uv.row(r) - meshes[k].uv.row(nearest)).norm(), 1e-6);
+      }
+    }
+  }
+  std::filesystem::remove_all(directory);
+}
+
+TEST(MeshExport, UnknownExtensionIsAnErrorAndWritesNothing) {
+  const auto directory = fresh_directory("bad_extension");
+  try {
+    export_meshes(sample_meshes(), directory / "mesh.xyz");
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("unknown mesh file extension \".xyz\""));
+    EXPECT_THAT(error.what(), HasSubstr(".obj, .stl, .ply, .gltf or .glb"));
+  }
+  EXPECT_THROW(export_meshes(sample_meshes(), directory / "mesh"), Error);
+  EXPECT_TRUE(file_names(directory).empty());
+  EXPECT_EQ(mesh_format_from_path("A.OBJ"), MeshFormat::kObj);
+  EXPECT_EQ(mesh_format_from_path("a.glb"), MeshFormat::kGlb);
+  std::filesystem::remove_all(directory);
+}
+
+TEST(MeshExport, FailedExportKeepsTheOldFileAndLeavesNoTemporary) {
+  const auto directory = fresh_directory("failed");
+  const std::filesystem::path path = directory / "keep.stl";
+  { std::ofstream(path) << "old contents"; }
+  TriangleMesh broken = sample_meshes()[0];
+  broken.triangles(3, 1) = broken.vertex_count();  // index out of range
+  EXPECT_THROW(export_mesh(broken, path), Error);
+  EXPECT_THROW(export_meshes({}, path), Error);
+  EXPECT_EQ(file_names(directory), std::vector<std::string>{"keep.stl"});
+  std::ifstream in(path);
+  std::string contents;
+  std::getline(in, contents);
+  EXPECT_EQ(contents, "old contents");
+  // A directory that does not exist: assimp cannot open the temporary file
+  EXPECT_THROW(export_meshes(sample_meshes(), directory / "missing" / "mesh.obj"), Error);
+  std::filesystem::remove_all(directory);
+}
+
+TEST(MeshImport, MissingOrUnreadableFileIsAnError) {
+  const auto directory = fresh_directory("import");
+  try {
+    import_meshes(directory / "none.obj");
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("none.obj: the mesh file does not exist"));
+  }
+  { std::ofstream(directory / "garbage.ply") << "this is not a ply file\n"; }
+  try {
+    import_meshes(directory / "garbage.ply");
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("garbage.ply: assimp cannot read the mesh file"));
+  }
+  std::filesystem::remove_all(directory);
+}
+
+}  // namespace
+}  // namespace dnurbs

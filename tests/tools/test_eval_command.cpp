@@ -1,0 +1,267 @@
+// Runs the built dnurbs command: eval output, error messages and exit codes, the default demo.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/mesh_import.h"
+#include "io/shape_file.h"
+
+namespace dnurbs {
+namespace {
+
+using ::testing::HasSubstr;
+using Json = nlohmann::json;
+
+const std::string kDnurbs = std::string(DNURBS_BINARY_DIR) + "/tools/dnurbs";
+const std::string kData = DNURBS_TEST_DATA_DIR;
+
+struct Result {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("dnurbs_test_tools_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs `dnurbs <arguments>` (arguments are passed to /bin/sh as written)
+Result run(const std::string& arguments) {
+  static int counter = 0;
+  const auto err_path =
+      std::filesystem::temp_directory_path() /
+      ("dnurbs_test_tools_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const std::string command = kDnurbs + " " + arguments + " 2>" + err_path.string();
+  Result result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    ADD_FAILURE() << "cannot run " << command;
+    return result;
+  }
+  std::array<char, 4096> buffer{};
+  size_t read = 0;
+  while ((read = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    result.out.append(buffer.data(), read);
+  }
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.err = read_text(err_path);
+  std::filesystem::remove(err_path);
+  return result;
+}
+
+Eigen::Vector3d vector_of(const Json& value) {
+  return {value.at(0).get<double>(), value.at(1).get<double>(), value.at(2).get<double>()};
+}
+
+TEST(EvalCommand, RationalCircleFilePrintsPointsOfRadiusOne) {
+  const Result result =
+      run("eval " + kData + "/circle.json --at 0.3 --at 0.8 --at 1 --derivatives 2");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Json output = Json::parse(result.out);
+  EXPECT_EQ(output.at("type"), "nurbs_curve");
+  EXPECT_EQ(output.at("derivative_order"), 2);
+  ASSERT_EQ(output.at("evaluations").size(), 3u);
+  const NurbsCurve circle = std::get<NurbsCurve>(read_shape_file(kData + "/circle.json"));
+  for (const Json& evaluation : output.at("evaluations")) {
+    const double u = evaluation.at("u").get<double>();
+    const Eigen::Vector3d point = vector_of(evaluation.at("point"));
+    // Exact rational circle: only rounding in the evaluation remains
+    EXPECT_NEAR(point.norm(), 1.0, 1e-14) << "u = " << u;
+    ASSERT_EQ(evaluation.at("derivatives").size(), 3u);
+    // 17 significant digits: the printed numbers read back as the library's exact doubles
+    const CurveDerivatives expected = circle.derivatives(u, 2);
+    for (int k = 0; k <= 2; ++k) {
+      EXPECT_EQ(vector_of(evaluation.at("derivatives").at(static_cast<size_t>(k))),
+                expected.row(k).transpose())
+          << "u = " << u << ", order " << k;
+    }
+    // On a circle the tangent is perpendicular to the radius (rounding of |C'| ~ 6)
+    EXPECT_NEAR(point.dot(vector_of(evaluation.at("derivatives").at(1))), 0.0, 1e-13);
+  }
+  EXPECT_EQ(output.at("evaluations").at(0).at("u").get<double>(), 0.3);
+}
+
+TEST(EvalCommand, PeriodicTorusFilePrintsNamedPartialDerivatives) {
+  const Result result =
+      run("eval " + kData + "/torus_periodic.json --at 0.1,0.7 --at 0.95,0.05 --derivatives 2");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Json output = Json::parse(result.out);
+  EXPECT_EQ(output.at("type"), "nurbs_surface");
+  const NurbsSurface torus =
+      std::get<NurbsSurface>(read_shape_file(kData + "/torus_periodic.json"));
+  for (const Json& evaluation : output.at("evaluations")) {
+    const double u = evaluation.at("u").get<double>();
+    const double v = evaluation.at("v").get<double>();
+    const Json& derivatives = evaluation.at("derivatives");
+    EXPECT_EQ(derivatives.size(), 6u);
+    const SurfaceDerivatives expected = torus.derivatives(u, v, 2);
+    EXPECT_EQ(vector_of(derivatives.at("S")), expected(0, 0));
+    EXPECT_EQ(vector_of(derivatives.at("Su")), expected(1, 0));
+    EXPECT_EQ(vector_of(derivatives.at("Sv")), expected(0, 1));
+    EXPECT_EQ(vector_of(derivatives.at("Suu")), expected(2, 0));
+    EXPECT_EQ(vector_of(derivatives.at("Suv")), expected(1, 1));
+    EXPECT_EQ(vector_of(derivatives.at("Svv")), expected(0, 2));
+    // The point is at distance 0.5 from the tube's centre circle of radius 2
+    const Eigen::Vector3d p = vector_of(evaluation.at("point"));
+    const Eigen::Vector3d centre = 2.0 * Eigen::Vector3d(p.x(), p.y(), 0.0).normalized();
+    EXPECT_NEAR((p - centre).norm(), 0.5, 1e-14);
+  }
+}
+
+struct BadFile {
+  const char* name;
+  const char* contents;
+  const char* message;
+};
+
+TEST(EvalCommand, MalformedFilesExitOneNamingFileAndKey) {
+  const auto directory = fresh_directory("malformed");
+  const BadFile files[] = {
+      {"syntax.json", "{\"type\": \"nurbs_curve\",\n  \"degree\": 2\n  \"knots\": []}",
+       "syntax.json: invalid JSON at line 3, column"},
+      {"weight.json",
+       R"({"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1],
+           "control_points": [[0, 0, 0], [1, 0, 0]], "weights": [1, -2]})",
+       "weight.json: weights[1]: expected a weight > 0, got -2"},
+      {"coordinate.json",
+       R"({"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1],
+           "control_points": [[0, 0, 0], [1, "one", 0]]})",
+       R"(coordinate.json: control_points[1][1]: expected a finite number, got string "one")"},
+      {"count.json",
+       R"({"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 0.5, 1, 1],
+           "control_points": [[0, 0, 0], [1, 0, 0]]})",
+       "count.json: control_points: expected 3 control points"},
+      {"type.json", R"({"type": 7})", "type.json: type: expected \"nurbs_curve\""},
+  };
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.name);
+    { std::ofstream(directory / file.name) << file.contents; }
+    const Result result = run("eval " + (directory / file.name).string() + " --at 0.5");
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_THAT(result.err, HasSubstr(file.message));
+    EXPECT_EQ(result.out, "");  // nothing half-printed
+  }
+  const Result missing = run("eval " + (directory / "none.json").string() + " --at 0.5");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_THAT(missing.err, HasSubstr("none.json: the shape file does not exist"));
+  std::filesystem::remove_all(directory);
+}
+
+TEST(EvalCommand, BadParametersExitOneAndBadCommandLinesExitTwo) {
+  const std::string circle = kData + "/circle.json";
+  const Result outside = run("eval " + circle + " --at 1.5");
+  EXPECT_EQ(outside.exit_code, 1);
+  EXPECT_THAT(outside.err, HasSubstr("--at 1.5"));
+  const Result two = run("eval " + circle + " --at 0.2,0.3");
+  EXPECT_EQ(two.exit_code, 1);
+  EXPECT_THAT(two.err, HasSubstr("a curve takes one parameter u"));
+  const Result one = run("eval " + kData + "/torus_periodic.json --at 0.2");
+  EXPECT_EQ(one.exit_code, 1);
+  EXPECT_THAT(one.err, HasSubstr("a surface takes two parameters u,v"));
+
+  EXPECT_EQ(run("eval " + circle).exit_code, 2);  // no --at
+  EXPECT_EQ(run("eval " + circle + " --at abc").exit_code, 2);
+  EXPECT_EQ(run("eval " + circle + " --at 0.5 --derivatives 99").exit_code, 2);
+  EXPECT_EQ(run("eval " + circle + " --at 0.5 --frobnicate").exit_code, 2);
+  const Result unknown = run("frobnicate");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("unknown command \"frobnicate\""));
+  EXPECT_EQ(run("").exit_code, 2);
+}
+
+TEST(DnurbsCommand, HelpForProgramAndEachSubcommandExitsZero) {
+  const Result help = run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_THAT(help.out, HasSubstr("usage: dnurbs COMMAND"));
+  for (const std::string command : {"eval", "run", "export", "preview"}) {
+    const Result sub = run(command + " --help");
+    EXPECT_EQ(sub.exit_code, 0) << command;
+    EXPECT_THAT(sub.out, HasSubstr("usage: dnurbs " + command)) << command;
+  }
+}
+
+TEST(RunCommand, DefaultDemoWritesObjAndPng) {
+  const auto directory = fresh_directory("demo");
+  const Result result = run("run --out " + directory.string() + " --resolution 24");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("demo.obj"));
+  EXPECT_THAT(result.out, HasSubstr("demo.png"));
+  // The OBJ holds the hat (open: 25 x 25 vertices) and the periodic torus (24 x 12, no seams)
+  const std::vector<TriangleMesh> meshes = import_meshes(directory / "demo.obj");
+  ASSERT_EQ(meshes.size(), 2u);
+  EXPECT_EQ(meshes[0].name, "hat");
+  EXPECT_EQ(meshes[0].triangle_count(), 2 * 24 * 24);
+  EXPECT_EQ(meshes[1].name, "torus");
+  EXPECT_EQ(meshes[1].triangle_count(), 2 * 24 * 12);
+  EXPECT_EQ(meshes[1].vertex_count(), 24 * 12);
+  // A PNG file: its signature and a non-trivial size
+  const std::string png = read_text(directory / "demo.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // The shape files it wrote read back
+  EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "torus.json")));
+  EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "hat.json")));
+  std::filesystem::remove_all(directory);
+}
+
+TEST(ExportCommand, ShapeFileBecomesAMeshInTheFormatOfTheExtension) {
+  const auto directory = fresh_directory("export");
+  const Result stl = run("export " + kData + "/torus_periodic.json " +
+                         (directory / "torus.stl").string() + " --resolution 16");
+  ASSERT_EQ(stl.exit_code, 0) << stl.err;
+  const std::vector<TriangleMesh> torus = import_meshes(directory / "torus.stl");
+  ASSERT_EQ(torus.size(), 1u);
+  EXPECT_EQ(torus[0].triangle_count(), 2 * 16 * 16);
+  const Result tube = run("export " + kData + "/circle.json " +
+                          (directory / "circle.obj").string() + " --resolution 40 --radius 0.05");
+  ASSERT_EQ(tube.exit_code, 0) << tube.err;
+  const std::vector<TriangleMesh> circle = import_meshes(directory / "circle.obj");
+  ASSERT_EQ(circle.size(), 1u);
+  EXPECT_EQ(circle[0].triangle_count(), 2 * 40 * 12);
+  for (int r = 0; r < circle[0].vertex_count(); ++r) {
+    const Eigen::Vector3d p = circle[0].vertices.row(r);
+    const Eigen::Vector3d centre = Eigen::Vector3d(p.x(), p.y(), 0.0).normalized();
+    EXPECT_NEAR((p - centre).norm(), 0.05, 1e-6);  // single precision in the OBJ
+  }
+  const Result bad = run("export " + kData + "/circle.json " + (directory / "c.xyz").string());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.err, HasSubstr("unknown mesh file extension \".xyz\""));
+  EXPECT_EQ(run("export " + kData + "/circle.json").exit_code, 2);
+  std::filesystem::remove_all(directory);
+}
+
+TEST(PreviewCommand, MissingMeshExitsOne) {
+  const auto directory = fresh_directory("preview");
+  const Result result =
+      run("preview " + (directory / "none.obj").string() + " " + (directory / "x.png").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("none.obj"));
+  EXPECT_FALSE(std::filesystem::exists(directory / "x.png"));
+  std::filesystem::remove_all(directory);
+}
+
+}  // namespace
+}  // namespace dnurbs

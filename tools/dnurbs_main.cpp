@@ -1,0 +1,69 @@
+// The dnurbs command: evaluate, tessellate, export and preview shapes; run the default demo.
+
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "nurbs/error.h"
+#include "tools/command_line.h"
+#include "tools/eval_command.h"
+#include "tools/mesh_commands.h"
+
+namespace {
+
+constexpr const char* kHelp = R"(usage: dnurbs COMMAND [ARGS...]
+
+commands:
+  eval SHAPE.json --at U[,V] ...   points and derivatives of a curve or surface, as JSON
+  run [--out DIR]                  the default demo: shapes, OBJ meshes and a PNG preview
+  export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
+  preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
+
+Run `dnurbs COMMAND --help` for a command's options.
+exit codes: 0 ok, 1 bad input or failed processing, 2 bad command line
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace dnurbs::tools;
+  const std::vector<std::string> arguments(argv + 1, argv + argc);
+  if (arguments.empty()) {
+    std::cerr << kHelp;
+    return kExitUsage;
+  }
+  const std::string& command = arguments.front();
+  if (command == "-h" || command == "--help" || command == "help") {
+    std::cout << kHelp;
+    return kExitOk;
+  }
+  const std::vector<std::string> rest(arguments.begin() + 1, arguments.end());
+  const std::string program = argc > 0 ? argv[0] : "dnurbs";
+  try {
+    if (command == "eval") {
+      return eval_command(rest, std::cout);
+    }
+    if (command == "run") {
+      return run_command(rest, program, std::cout);
+    }
+    if (command == "export") {
+      return export_command(rest, std::cout);
+    }
+    if (command == "preview") {
+      return preview_command(rest, program, std::cout);
+    }
+    std::cerr << "dnurbs: unknown command \"" << command << "\"\n\n" << kHelp;
+    return kExitUsage;
+  } catch (const UsageError& error) {
+    std::cerr << "dnurbs " << command << ": " << error.what() << "\n"
+              << "run `dnurbs " << command << " --help` for usage\n";
+    return kExitUsage;
+  } catch (const dnurbs::Error& error) {
+    std::cerr << "dnurbs " << command << ": error: " << error.what() << "\n";
+    return kExitError;
+  } catch (const std::exception& error) {
+    std::cerr << "dnurbs " << command << ": unexpected error: " << error.what() << "\n";
+    return kExitError;
+  }
+}

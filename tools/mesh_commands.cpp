@@ -1,0 +1,222 @@
+#include "tools/mesh_commands.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+#include <variant>
+
+#include "io/mesh_export.h"
+#include "io/preview.h"
+#include "io/shape_file.h"
+#include "nurbs/error.h"
+#include "surface/tessellation.h"
+#include "tools/command_line.h"
+#include "tools/demo_shapes.h"
+
+namespace dnurbs::tools {
+
+const char* const kRunHelp = R"(usage: dnurbs run [--out DIR] [--resolution N]
+
+Runs the default demo (scene files are not supported yet): builds a rational bicubic "hat"
+surface and an exact rational quadratic torus (periodic in u and v), tessellates them, and
+writes into DIR (default ./dnurbs-out):
+  hat.json, torus.json   the two shapes as shape files (see dnurbs eval)
+  demo.obj, demo.mtl     both meshes, one object and material each
+  demo.png               a shaded preview rendered by preview_mesh.py (python3 + matplotlib)
+
+options:
+  --out DIR           output directory (created if missing)
+  --resolution N      segments per parameter direction, 3..1024 (default 48)
+  -h, --help          this help
+
+Set DNURBS_PYTHON to choose the python interpreter for the preview.
+exit codes: 0 ok, 1 failure (for example no python with matplotlib), 2 bad command line
+)";
+
+const char* const kExportHelp =
+    R"(usage: dnurbs export SHAPE.json MESH [--resolution N] [--radius R]
+
+Tessellates the curve or surface of a shape file and writes a triangle mesh. The format follows
+MESH's extension: .obj (default choice; with a .mtl), .stl, .ply, .gltf (with a .bin) or .glb.
+A surface gets N x N cells; a curve becomes a tube of radius R around N segments.
+
+options:
+  --resolution N      segments per direction, 3..4096 (default 32 for surfaces, 128 for curves)
+  --radius R          tube radius for curves (default 1% of the control polygon's diagonal)
+  -h, --help          this help
+
+exit codes: 0 ok, 1 bad shape file or failed export, 2 bad command line
+)";
+
+const char* const kPreviewHelp = R"(usage: dnurbs preview MESH.obj OUT.png
+
+Renders a shaded PNG of an OBJ mesh with preview_mesh.py (python3 + matplotlib; set
+DNURBS_PYTHON to choose the interpreter).
+
+exit codes: 0 ok, 1 failure (missing mesh, no python with matplotlib), 2 bad command line
+)";
+
+namespace {
+
+// Where preview_mesh.py may be: the source tree, beside an installed dnurbs, the install prefix
+std::vector<std::filesystem::path> preview_script_directories(const std::string& program) {
+  std::vector<std::filesystem::path> directories = {DNURBS_SOURCE_TOOLS_DIR};
+  std::error_code error;
+  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  const std::filesystem::path binary = error ? std::filesystem::path(program) : executable;
+  if (!binary.empty()) {
+    directories.push_back(binary.parent_path().parent_path() / "share" / "dnurbs");
+  }
+  directories.emplace_back(DNURBS_INSTALLED_TOOLS_DIR);
+  return directories;
+}
+
+std::vector<std::string> python_candidates() {
+  std::vector<std::string> candidates;
+  if (const char* chosen = std::getenv("DNURBS_PYTHON"); chosen != nullptr && *chosen != '\0') {
+    candidates.emplace_back(chosen);
+  }
+  candidates.emplace_back("python3");
+  candidates.emplace_back("/usr/bin/python3");
+  return candidates;
+}
+
+void render(const std::string& program, const std::filesystem::path& mesh,
+            const std::filesystem::path& png) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(mesh, error)) {
+    throw make_error(mesh.string(), ": the mesh file does not exist");
+  }
+  const std::filesystem::path script = find_preview_script(preview_script_directories(program));
+  const std::string python = find_python_with_matplotlib(python_candidates());
+  render_preview(python, script, mesh, png);
+}
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& arguments, const std::string& program,
+                std::ostream& out) {
+  if (wants_help(arguments)) {
+    out << kRunHelp;
+    return kExitOk;
+  }
+  std::filesystem::path directory = "dnurbs-out";
+  int resolution = 48;
+  for (size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    if (argument == "--out") {
+      directory = flag_value(arguments, i);
+    } else if (argument == "--resolution") {
+      resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
+    } else if (argument.starts_with("-")) {
+      throw UsageError("unknown option " + argument);
+    } else {
+      throw UsageError("scene files are not supported yet (got " + argument +
+                       "); run without one for the default demo");
+    }
+  }
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    throw make_error(directory.string(), ": cannot create the output directory: ", error.message());
+  }
+
+  // Build the demo shapes and keep them as shape files
+  const NurbsSurface hat = hat_surface();
+  const NurbsSurface torus = periodic_torus(0.8, 0.28, Eigen::Vector3d(2.6, 0.0, 0.28));
+  write_shape_file(directory / "hat.json", hat);
+  write_shape_file(directory / "torus.json", torus);
+  out << "wrote " << (directory / "hat.json").string()
+      << " (rational bicubic hat surface, 7 x 7 control points)\n";
+  out << "wrote " << (directory / "torus.json").string()
+      << " (rational quadratic torus, periodic in u and v, 8 x 8 control points)\n";
+
+  // Tessellate and export
+  const std::vector<TriangleMesh> meshes = {
+      tessellate_surface(hat, resolution, resolution, "hat"),
+      tessellate_surface(torus, resolution, std::max(3, resolution / 2), "torus")};
+  const std::filesystem::path obj = directory / "demo.obj";
+  export_meshes(meshes, obj);
+  out << "wrote " << obj.string() << " (hat: " << meshes[0].vertex_count() << " vertices, "
+      << meshes[0].triangle_count() << " triangles; torus: " << meshes[1].vertex_count()
+      << " vertices, " << meshes[1].triangle_count() << " triangles; with demo.mtl)\n";
+
+  // Preview
+  const std::filesystem::path png = directory / "demo.png";
+  render(program, obj, png);
+  out << "wrote " << png.string() << " (shaded preview)\n";
+  return kExitOk;
+}
+
+int export_command(const std::vector<std::string>& arguments, std::ostream& out) {
+  if (wants_help(arguments)) {
+    out << kExportHelp;
+    return kExitOk;
+  }
+  std::vector<std::string> files;
+  int resolution = 0;
+  double radius = 0.0;
+  for (size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    if (argument == "--resolution") {
+      resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 4096);
+    } else if (argument == "--radius") {
+      radius = parse_double(flag_value(arguments, i), "--radius");
+      if (!(radius > 0.0)) {
+        throw UsageError("--radius: expected a positive number, got " + arguments[i]);
+      }
+    } else if (argument.starts_with("-") && argument.size() > 1) {
+      throw UsageError("unknown option " + argument);
+    } else {
+      files.push_back(argument);
+    }
+  }
+  if (files.size() != 2) {
+    throw UsageError("expected SHAPE.json and MESH, got " + std::to_string(files.size()) +
+                     " file arguments");
+  }
+  const std::filesystem::path mesh_path = files[1];
+  mesh_format_from_path(mesh_path);  // an unknown extension fails before any work
+  const Shape shape = read_shape_file(files[0]);
+  const std::string name = std::filesystem::path(files[0]).stem().string();
+  TriangleMesh mesh;
+  if (const auto* surface = std::get_if<NurbsSurface>(&shape)) {
+    const int segments = resolution > 0 ? resolution : 32;
+    mesh = tessellate_surface(*surface, segments, segments, name);
+  } else {
+    const auto& curve = std::get<NurbsCurve>(shape);
+    const Eigen::MatrixX3d& points = curve.control_points();
+    const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    const double tube = radius > 0.0 ? radius : (diagonal > 0.0 ? 0.01 * diagonal : 0.01);
+    mesh = tessellate_curve_tube(curve, resolution > 0 ? resolution : 128, tube, 12, name);
+  }
+  export_mesh(mesh, mesh_path);
+  out << "wrote " << mesh_path.string() << " (" << mesh.vertex_count() << " vertices, "
+      << mesh.triangle_count() << " triangles)\n";
+  return kExitOk;
+}
+
+int preview_command(const std::vector<std::string>& arguments, const std::string& program,
+                    std::ostream& out) {
+  if (wants_help(arguments)) {
+    out << kPreviewHelp;
+    return kExitOk;
+  }
+  std::vector<std::string> files;
+  for (const auto& argument : arguments) {
+    if (argument.starts_with("-") && argument.size() > 1) {
+      throw UsageError("unknown option " + argument);
+    }
+    files.push_back(argument);
+  }
+  if (files.size() != 2) {
+    throw UsageError("expected MESH.obj and OUT.png, got " + std::to_string(files.size()) +
+                     " file arguments");
+  }
+  render(program, files[0], files[1]);
+  out << "wrote " << files[1] << " (shaded preview of " << files[0] << ")\n";
+  return kExitOk;
+}
+
+}  // namespace dnurbs::tools
