@@ -15,6 +15,19 @@ void check_radius(double radius, const char* name) {
 
 const double kHalfSqrt2 = std::sqrt(0.5);
 
+// (x, y, weight) of the 8 distinct control points of the periodic unit circle, from angle 0.
+constexpr int kPeriodicCirclePoints = 8;
+Eigen::Matrix<double, kPeriodicCirclePoints, 3> periodic_unit_circle() {
+  Eigen::Matrix<double, kPeriodicCirclePoints, 3> circle;
+  circle << 1, 0, 1, 1, 1, kHalfSqrt2, 0, 1, 1, -1, 1, kHalfSqrt2, -1, 0, 1, -1, -1, kHalfSqrt2, 0,
+      -1, 1, 1, -1, kHalfSqrt2;
+  return circle;
+}
+
+KnotVector periodic_circle_knots() {
+  return KnotVector::periodic(2, {0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0});
+}
+
 }  // namespace
 
 NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre) {
@@ -27,6 +40,17 @@ NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre) {
   weights << 1, kHalfSqrt2, 1, kHalfSqrt2, 1, kHalfSqrt2, 1, kHalfSqrt2, 1;
   KnotVector knots(2, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1});
   return NurbsCurve(std::move(knots), std::move(points), std::move(weights));
+}
+
+NurbsCurve periodic_circle(double radius, const Eigen::Vector3d& centre) {
+  check_radius(radius, "circle radius");
+  const auto circle = periodic_unit_circle();
+  Eigen::MatrixX3d points(kPeriodicCirclePoints, 3);
+  for (int i = 0; i < kPeriodicCirclePoints; ++i) {
+    points.row(i) << centre.x() + radius * circle(i, 0), centre.y() + radius * circle(i, 1),
+        centre.z();
+  }
+  return NurbsCurve(periodic_circle_knots(), std::move(points), circle.col(2));
 }
 
 NurbsCurve half_circle_xz(double radius) {
@@ -84,6 +108,27 @@ NurbsSurface torus(double major_radius, double minor_radius) {
     points.row(i) << major_radius + unit.control_points()(i, 0), 0.0, unit.control_points()(i, 1);
   }
   return surface_of_revolution(NurbsCurve(unit.knots(), points, unit.weights()));
+}
+
+NurbsSurface periodic_torus(double major_radius, double minor_radius,
+                            const Eigen::Vector3d& centre) {
+  check_radius(major_radius, "torus major radius");
+  check_radius(minor_radius, "torus minor radius");
+  const auto circle = periodic_unit_circle();
+  constexpr int n = kPeriodicCirclePoints;
+  Eigen::MatrixX3d points(n * n, 3);
+  Eigen::VectorXd weights(n * n);
+  for (int i = 0; i < n; ++i) {    // u: around the z axis
+    for (int j = 0; j < n; ++j) {  // v: around the tube
+      const double distance = major_radius + minor_radius * circle(j, 0);
+      points.row(i * n + j) =
+          centre.transpose() + Eigen::RowVector3d(distance * circle(i, 0), distance * circle(i, 1),
+                                                  minor_radius * circle(j, 1));
+      weights[i * n + j] = circle(i, 2) * circle(j, 2);
+    }
+  }
+  return NurbsSurface(periodic_circle_knots(), periodic_circle_knots(), std::move(points),
+                      std::move(weights));
 }
 
 }  // namespace dnurbs

@@ -11,6 +11,10 @@ namespace dnurbs {
 /// {0,0,0,1/4,1/4,1/2,1/2,3/4,3/4,1,1,1}.
 NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
 
+/// The same circle as a closed (periodic) curve without a seam: 8 distinct control points,
+/// period knots {0, 1/4, 1/4, 1/2, 1/2, 3/4, 3/4, 1, 1}.
+NurbsCurve periodic_circle(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
+
 /// The rational quadratic half circle in the xz plane from the south pole (0, 0, -r) through
 /// (r, 0, 0) to the north pole (0, 0, r): 5 control points, knots {0,0,0,1/2,1/2,1,1,1}.
 NurbsCurve half_circle_xz(double radius);
@@ -25,5 +29,10 @@ NurbsSurface sphere(double radius);
 /// A torus about the z axis with tube centre distance `major_radius` and tube radius
 /// `minor_radius`.
 NurbsSurface torus(double major_radius, double minor_radius);
+
+/// The torus as a surface periodic in both directions (u around the z axis, v around the tube
+/// from the outer equator upwards), 8 x 8 distinct control points, centred at `centre`.
+NurbsSurface periodic_torus(double major_radius, double minor_radius,
+                            const Eigen::Vector3d& centre = Eigen::Vector3d::Zero());
 
 }  // namespace dnurbs

@@ -29,34 +29,4 @@ NurbsSurface hat_surface() {
   return NurbsSurface(knots, knots, control_points, weights);
 }
 
-NurbsSurface periodic_torus(double major_radius, double minor_radius,
-                            const Eigen::Vector3d& centre) {
-  // The 8 distinct control points of the unit rational quadratic circle, starting at angle 0
-  const double s = std::sqrt(0.5);
-  const std::array<std::array<double, 3>, 8> circle = {{{1, 0, 1},
-                                                        {1, 1, s},
-                                                        {0, 1, 1},
-                                                        {-1, 1, s},
-                                                        {-1, 0, 1},
-                                                        {-1, -1, s},
-                                                        {0, -1, 1},
-                                                        {1, -1, s}}};
-  const std::vector<double> period = {0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0};
-  const KnotVector knots = KnotVector::periodic(2, period);
-  Eigen::MatrixX3d control_points(64, 3);
-  Eigen::VectorXd weights(64);
-  for (int i = 0; i < 8; ++i) {    // u: around the z axis
-    for (int j = 0; j < 8; ++j) {  // v: around the tube, from the outer equator upwards
-      const auto& a = circle[static_cast<size_t>(i)];
-      const auto& b = circle[static_cast<size_t>(j)];
-      const double distance = major_radius + minor_radius * b[0];
-      control_points.row(i * 8 + j) =
-          centre.transpose() +
-          Eigen::RowVector3d(distance * a[0], distance * a[1], minor_radius * b[1]);
-      weights(i * 8 + j) = a[2] * b[2];
-    }
-  }
-  return NurbsSurface(knots, knots, control_points, weights);
-}
-
 }  // namespace dnurbs::tools

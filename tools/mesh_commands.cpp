@@ -10,6 +10,7 @@
 #include "io/preview.h"
 #include "io/shape_file.h"
 #include "nurbs/error.h"
+#include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
 #include "tools/command_line.h"
 #include "tools/demo_shapes.h"

@@ -15,7 +15,6 @@
 #include "nurbs/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
-#include "tests/common/periodic_shapes.h"
 
 namespace dnurbs {
 namespace {
@@ -40,7 +39,7 @@ std::vector<std::string> file_names(const std::filesystem::path& directory) {
 }
 
 std::vector<TriangleMesh> sample_meshes() {
-  return {tessellate_surface(testing::periodic_torus(2.0, 0.5), 10, 6, "torus"),
+  return {tessellate_surface(periodic_torus(2.0, 0.5), 10, 6, "torus"),
           tessellate_surface(sphere(0.75), 5, 8, "sphere")};
 }
 

@@ -12,8 +12,8 @@
 
 #include "io/mesh_export.h"
 #include "nurbs/error.h"
+#include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
-#include "tests/common/periodic_shapes.h"
 
 namespace dnurbs {
 namespace {
@@ -78,7 +78,7 @@ TEST(Preview, RendersAPngOfAnExportedMesh) {
     GTEST_SKIP() << error.what();
   }
   const auto directory = fresh_directory("render");
-  export_mesh(tessellate_surface(testing::periodic_torus(2.0, 0.5), 16, 8, "torus"),
+  export_mesh(tessellate_surface(periodic_torus(2.0, 0.5), 16, 8, "torus"),
               directory / "torus.obj");
   const auto script = find_preview_script({kToolsDir});
   render_preview(python, script, directory / "torus.obj", directory / "torus.png");

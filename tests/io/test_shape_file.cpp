@@ -12,7 +12,6 @@
 
 #include "nurbs/error.h"
 #include "nurbs/primitive_shapes.h"
-#include "tests/common/periodic_shapes.h"
 
 namespace dnurbs {
 namespace {
@@ -53,14 +52,14 @@ TEST(ShapeFile, RationalCurveRoundTripsExactly) {
 
 TEST(ShapeFile, PeriodicCurveAndSurfaceRoundTripThroughFiles) {
   const auto directory = fresh_directory("round_trip");
-  const NurbsCurve circle = testing::periodic_circle(std::sqrt(2.0));
+  const NurbsCurve circle = periodic_circle(std::sqrt(2.0));
   write_shape_file(directory / "circle.json", circle);
   const Shape curve = read_shape_file(directory / "circle.json");
   ASSERT_TRUE(std::holds_alternative<NurbsCurve>(curve));
   EXPECT_TRUE(std::get<NurbsCurve>(curve).is_periodic());
   expect_same_curve(std::get<NurbsCurve>(curve), circle);
 
-  const NurbsSurface torus = testing::periodic_torus(2.0, std::sqrt(0.1));
+  const NurbsSurface torus = periodic_torus(2.0, std::sqrt(0.1));
   write_shape_file(directory / "torus.json", torus);
   const Shape surface = read_shape_file(directory / "torus.json");
   ASSERT_TRUE(std::holds_alternative<NurbsSurface>(surface));

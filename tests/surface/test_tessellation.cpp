@@ -9,7 +9,6 @@
 
 #include "nurbs/error.h"
 #include "nurbs/primitive_shapes.h"
-#include "tests/common/periodic_shapes.h"
 
 namespace dnurbs {
 namespace {
@@ -96,7 +95,7 @@ TEST(SurfaceTessellation, TrianglesFaceAlongTheSurfaceNormal) {
 }
 
 TEST(PeriodicTorusTessellation, IsWatertightWithoutSeamDuplicates) {
-  const TriangleMesh mesh = tessellate_surface(testing::periodic_torus(2.0, 0.5), 12, 8);
+  const TriangleMesh mesh = tessellate_surface(periodic_torus(2.0, 0.5), 12, 8);
   EXPECT_EQ(mesh.vertex_count(), 12 * 8);
   EXPECT_EQ(mesh.triangle_count(), 2 * 12 * 8);
   const EdgeCounts edges = count_edges(mesh);
@@ -114,7 +113,7 @@ TEST(PeriodicTorusTessellation, IsWatertightWithoutSeamDuplicates) {
 TEST(PeriodicTorusTessellation, VerticesLieOnTheExactTorusWithOutwardNormals) {
   constexpr double kMajor = 2.0;
   constexpr double kMinor = 0.5;
-  const NurbsSurface torus = testing::periodic_torus(kMajor, kMinor);
+  const NurbsSurface torus = periodic_torus(kMajor, kMinor);
   const TriangleMesh mesh = tessellate_surface(torus, 24, 16);
   double worst_distance = 0.0;
   double worst_normal = 0.0;
@@ -135,7 +134,7 @@ TEST(PeriodicTorusTessellation, VerticesLieOnTheExactTorusWithOutwardNormals) {
 TEST(SurfaceTessellation, RejectsTooLowResolutions) {
   EXPECT_THROW(tessellate_surface(bicubic_patch(), 0, 4), Error);
   EXPECT_THROW(tessellate_surface(bicubic_patch(), 4, -1), Error);
-  EXPECT_THROW(tessellate_surface(testing::periodic_torus(2.0, 0.5), 2, 8), Error);
+  EXPECT_THROW(tessellate_surface(periodic_torus(2.0, 0.5), 2, 8), Error);
   EXPECT_NO_THROW(tessellate_surface(bicubic_patch(), 1, 1));
 }
 
@@ -147,12 +146,12 @@ TEST(CurveSampling, ClampedCircleSamplesCloseAndHaveRadiusOne) {
   }
   EXPECT_LT((points.row(0) - points.row(16)).norm(), 1e-15);
   // The periodic circle's samples do not repeat the first point
-  EXPECT_EQ(sample_curve(testing::periodic_circle(1.0), 16).rows(), 16);
+  EXPECT_EQ(sample_curve(periodic_circle(1.0), 16).rows(), 16);
 }
 
 TEST(CurveTube, PeriodicCircleGivesAClosedTubeAtTheRadius) {
   constexpr double kRadius = 0.1;
-  const TriangleMesh tube = tessellate_curve_tube(testing::periodic_circle(2.0), 32, kRadius, 10);
+  const TriangleMesh tube = tessellate_curve_tube(periodic_circle(2.0), 32, kRadius, 10);
   EXPECT_EQ(tube.vertex_count(), 32 * 10);
   EXPECT_EQ(tube.triangle_count(), 2 * 32 * 10);
   for (int r = 0; r < tube.vertex_count(); ++r) {
