@@ -1,0 +1,51 @@
+#pragma once
+// Shapes shared by the dynamics tests.
+
+#include <Eigen/Core>
+
+#include "nurbs/knot_vector.h"
+#include "nurbs/nurbs_curve.h"
+#include "nurbs/nurbs_surface.h"
+
+namespace dnurbs::test {
+
+/// Greville abscissae of a knot vector: placing control points there makes x(u) = u.
+inline Eigen::VectorXd greville(const KnotVector& knots) {
+  const int p = knots.degree();
+  const int n = knots.control_point_count();
+  Eigen::VectorXd result(n);
+  for (int i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (int k = 1; k <= p; ++k) {
+      sum += knots[i + k];
+    }
+    result[i] = sum / p;
+  }
+  return result;
+}
+
+/// The straight curve x(u) = (u, 0, 0) on [0, 1], degree p, `spans` uniform spans.
+inline NurbsCurve straight_curve(int degree, int spans) {
+  KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
+  const Eigen::VectorXd x = greville(knots);
+  Eigen::MatrixX3d points = Eigen::MatrixX3d::Zero(x.size(), 3);
+  points.col(0) = x;
+  return NurbsCurve(knots, points);
+}
+
+/// A planar square patch x(u, v) = (u, v, 0) on [0, 1]^2, degrees (p, q), uniform spans.
+inline NurbsSurface flat_patch(int degree_u, int degree_v, int spans_u, int spans_v) {
+  KnotVector knots_u = KnotVector::clamped_uniform(degree_u, spans_u + degree_u);
+  KnotVector knots_v = KnotVector::clamped_uniform(degree_v, spans_v + degree_v);
+  const Eigen::VectorXd gu = greville(knots_u);
+  const Eigen::VectorXd gv = greville(knots_v);
+  Eigen::MatrixX3d points(gu.size() * gv.size(), 3);
+  for (Eigen::Index i = 0; i < gu.size(); ++i) {
+    for (Eigen::Index j = 0; j < gv.size(); ++j) {
+      points.row(i * gv.size() + j) << gu[i], gv[j], 0.0;
+    }
+  }
+  return NurbsSurface(knots_u, knots_v, points);
+}
+
+}  // namespace dnurbs::test
