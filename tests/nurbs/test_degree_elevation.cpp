@@ -10,11 +10,20 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/common/error_message.h"
+#include "tests/nurbs/knot_operation_shapes.h"
+
 #include "nurbs/error.h"
 #include "nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {
+
+using testing::error_message;
+using testing::max_deviation;
+using testing::random_control_points;
+using testing::random_open_curve;
+using testing::random_periodic_curve;
 
 using ::testing::HasSubstr;
 
@@ -23,42 +32,6 @@ using ::testing::HasSubstr;
 // solves a collocation system whose condition number is small (~10) for these knots, so its
 // round-off is of the same order. 1e-12 leaves a wide margin over both.
 constexpr double kRoundOff = 1e-12;
-
-void random_control_points(int count, std::mt19937& generator, bool rational,
-                           Eigen::MatrixX3d& points, Eigen::VectorXd& weights) {
-  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
-  std::uniform_real_distribution<double> weight(0.5, 2.0);
-  points.resize(count, 3);
-  weights.resize(count);
-  for (int i = 0; i < count; ++i) {
-    points.row(i) << coordinate(generator), coordinate(generator), coordinate(generator);
-    weights[i] = rational ? weight(generator) : 1.0;
-  }
-}
-
-// A clamped curve over [-0.5, 2] with a double knot at 0.4 and single knots at 0.1 and 1.3.
-NurbsCurve random_open_curve(int degree, unsigned seed, bool rational) {
-  std::mt19937 generator(seed);
-  std::vector<double> knots(static_cast<size_t>(degree) + 1, -0.5);
-  knots.insert(knots.end(), {0.1, 0.4, 0.4, 1.3});
-  knots.insert(knots.end(), static_cast<size_t>(degree) + 1, 2.0);
-  KnotVector knot_vector(degree, knots);
-  Eigen::MatrixX3d points;
-  Eigen::VectorXd weights;
-  random_control_points(knot_vector.control_point_count(), generator, rational, points, weights);
-  return {std::move(knot_vector), std::move(points), std::move(weights)};
-}
-
-// A periodic curve over [0.3, 2.3] with uneven spacing and a double knot at 1.1.
-NurbsCurve random_periodic_curve(int degree, unsigned seed, bool rational) {
-  std::mt19937 generator(seed);
-  KnotVector knots =
-      KnotVector::periodic(degree, {0.3, 0.5, 0.8, 1.1, 1.1, 1.4, 1.5, 1.9, 2.05, 2.3});
-  Eigen::MatrixX3d points;
-  Eigen::VectorXd weights;
-  random_control_points(knots.control_point_count(), generator, rational, points, weights);
-  return {std::move(knots), std::move(points), std::move(weights)};
-}
 
 NurbsSurface random_surface(int degree_u, int degree_v, unsigned seed, bool rational,
                             bool periodic_u) {
@@ -74,31 +47,6 @@ NurbsSurface random_surface(int degree_u, int degree_v, unsigned seed, bool rati
   return {std::move(knots_u), std::move(knots_v), std::move(points), std::move(weights)};
 }
 
-double max_deviation(const NurbsCurve& a, const NurbsCurve& b) {
-  const double start = a.knots().domain_start();
-  const double end = a.knots().domain_end();
-  double worst = 0.0;
-  for (int i = 0; i <= 400; ++i) {
-    const double u = start + (end - start) * i / 400.0;
-    worst = std::max(worst, (a.point(u) - b.point(u)).norm());
-  }
-  return worst;
-}
-
-double max_deviation(const NurbsSurface& a, const NurbsSurface& b) {
-  double worst = 0.0;
-  for (int i = 0; i <= 20; ++i) {
-    const double u = a.knots_u().domain_start() +
-                     (a.knots_u().domain_end() - a.knots_u().domain_start()) * i / 20.0;
-    for (int j = 0; j <= 20; ++j) {
-      const double v = a.knots_v().domain_start() +
-                       (a.knots_v().domain_end() - a.knots_v().domain_start()) * j / 20.0;
-      worst = std::max(worst, (a.point(u, v) - b.point(u, v)).norm());
-    }
-  }
-  return worst;
-}
-
 // Every distinct knot value of `before` appears degree_increase more times in `after`.
 void expect_multiplicities_raised(const KnotVector& before, const KnotVector& after,
                                   int degree_increase) {
@@ -108,17 +56,6 @@ void expect_multiplicities_raised(const KnotVector& before, const KnotVector& af
           << "knot " << knot;
     }
   }
-}
-
-template <typename Action>
-std::string error_message(Action action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no dnurbs::Error thrown";
-  return {};
 }
 
 TEST(DegreeElevation, LeavesRationalCircleUnchanged) {

@@ -11,12 +11,21 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/common/error_message.h"
+#include "tests/nurbs/knot_operation_shapes.h"
+
 #include "nurbs/error.h"
 #include "nurbs/knot_insertion.h"
 #include "nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {
+
+using testing::error_message;
+using testing::max_deviation;
+using testing::random_control_points;
+using testing::random_open_curve;
+using testing::random_periodic_curve;
 
 using ::testing::HasSubstr;
 
@@ -27,31 +36,6 @@ constexpr double kRoundOff = 1e-12;
 // Tolerance for removing a knot that was just inserted: the two estimates A5.8 compares differ
 // only by round-off (~1e-15), so any tolerance far above that and far below the shape size works.
 constexpr double kExactRemoval = 1e-9;
-
-void random_control_points(int count, std::mt19937& generator, bool rational,
-                           Eigen::MatrixX3d& points, Eigen::VectorXd& weights) {
-  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
-  std::uniform_real_distribution<double> weight(0.5, 2.0);
-  points.resize(count, 3);
-  weights.resize(count);
-  for (int i = 0; i < count; ++i) {
-    points.row(i) << coordinate(generator), coordinate(generator), coordinate(generator);
-    weights[i] = rational ? weight(generator) : 1.0;
-  }
-}
-
-// A clamped curve over [-0.5, 2] with a double knot at 0.4 and single knots at 0.1 and 1.3.
-NurbsCurve random_open_curve(int degree, unsigned seed, bool rational) {
-  std::mt19937 generator(seed);
-  std::vector<double> knots(static_cast<size_t>(degree) + 1, -0.5);
-  knots.insert(knots.end(), {0.1, 0.4, 0.4, 1.3});
-  knots.insert(knots.end(), static_cast<size_t>(degree) + 1, 2.0);
-  KnotVector knot_vector(degree, knots);
-  Eigen::MatrixX3d points;
-  Eigen::VectorXd weights;
-  random_control_points(knot_vector.control_point_count(), generator, rational, points, weights);
-  return {std::move(knot_vector), std::move(points), std::move(weights)};
-}
 
 NurbsSurface random_surface(int degree_u, int degree_v, unsigned seed, bool rational) {
   std::mt19937 generator(seed);
@@ -64,30 +48,8 @@ NurbsSurface random_surface(int degree_u, int degree_v, unsigned seed, bool rati
   return {std::move(knots_u), std::move(knots_v), std::move(points), std::move(weights)};
 }
 
-double max_deviation(const NurbsCurve& a, const NurbsCurve& b) {
-  const double start = a.knots().domain_start();
-  const double end = a.knots().domain_end();
-  double worst = 0.0;
-  for (int i = 0; i <= 400; ++i) {
-    const double u = start + (end - start) * i / 400.0;
-    worst = std::max(worst, (a.point(u) - b.point(u)).norm());
-  }
-  return worst;
-}
-
 double max_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).cwiseAbs().maxCoeff();
-}
-
-template <typename Action>
-std::string error_message(Action action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no dnurbs::Error thrown";
-  return {};
 }
 
 TEST(KnotRemoval, UndoesInsertionOfCurves) {

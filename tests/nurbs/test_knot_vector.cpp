@@ -7,24 +7,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/common/error_message.h"
+
 #include "nurbs/error.h"
 
 namespace dnurbs {
 namespace {
 
-using ::testing::HasSubstr;
+using testing::error_message;
 
-// Runs `action`, expects dnurbs::Error, and returns its message.
-template <typename Action>
-std::string error_message(Action action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "expected dnurbs::Error";
-  return {};
-}
+using ::testing::HasSubstr;
 
 TEST(KnotVector, RejectsDecreasingKnotsNamingTheIndex) {
   const std::string message = error_message([] { KnotVector(2, {0, 0, 0, 0.6, 0.4, 1, 1, 1}); });
