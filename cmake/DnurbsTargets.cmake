@@ -52,7 +52,7 @@ function(dnurbs_add_test_folder folder)
   if(ARG_LABELS)
     # gtest_discover_tests splits a list-valued LABELS property, so extra labels are set by a
     # script that ctest runs after the discovered tests are defined.
-    string(REPLACE ";" "\\;" labels "${folder};${ARG_LABELS}")
+    set(labels "${folder};${ARG_LABELS}")
     set(script "${CMAKE_CURRENT_BINARY_DIR}/test_${folder}_labels.cmake")
     file(WRITE "${script}"
          "foreach(test IN LISTS test_${folder}_TESTS)\n"

@@ -26,17 +26,17 @@
 //
 // Quadrature: tensor Gauss-Legendre points on the cells of the (u, v) mesh (the FE mesh of the
 // local displacements: d is bilinear in each cell), settings.quadrature_points per direction.
-// For e < 1 the signed powers |cos w|^e have unbounded derivatives where cos w = 0, so the area
-// element |s_u x s_v| is singular (integrably) at u = -pi/2, 0, pi/2 (e1 < 1: poles and equator)
-// and at v = k pi/2 (e2 < 1),
-// and for small e most of the area (the flat caps and sides) lies within a tiny parameter
-// distance of those points: a plain Gauss rule converges slowly there. A cell ending at such a
-// point therefore maps its rule through w = w_s + (w_e - w_s) tau^(1/e) (tau in [0, 1], w_s the
-// singular end), which turns |cos w|^e into a smooth function of tau; cells singular at both
-// ends use the symmetric map // tau^p / (tau^p + (1 - tau)^p). Measured (tests/superquadric, 8 x 8
-// cells, 16 points per cell and direction, e1 = e2 = e): mass error 4e-2 plain vs 5e-14 graded for
-// e = 0.5, 0.19 vs 1e-9 for e = 0.3, 0.68 vs 1e-2 for e = 0.1, where double precision limits the u
-// parametrisation itself (|cos u| <= 1e-14 is snapped to 0, the inner ~4 % of a cap's radius).
+// For e < 1 the signed powers |cos w|^e have unbounded derivatives where cos w or sin w
+// vanish, so the area element |s_u x s_v| is singular (integrably) at u = -pi/2, 0, pi/2
+// (e1 < 1) and at v = k pi/2 (e2 < 1), and for small e most of the area (the flat caps and
+// sides) lies within a tiny parameter distance of those points: plain Gauss converges slowly.
+// A cell ending at such a point therefore maps its rule through w = w_s + (w_e - w_s) tau^(1/e)
+// (tau in [0, 1], w_s the singular end), which makes |cos w|^e a smooth function of tau (cells
+// singular at both ends use tau^p / (tau^p + (1 - tau)^p)). Measured in tests/superquadric
+// (8 x 8 cells, 16 points per cell and direction, e1 = e2 = e), mass error plain vs graded:
+// 4e-2 vs 5e-14 for e = 0.5, 0.19 vs 1e-9 for e = 0.3, 0.68 vs 1e-2 for e = 0.1, where double
+// precision limits the u parametrisation itself (|cos u| <= 1e-14 is snapped to 0: the inner
+// ~4 % of a cap's radius).
 //
 // Singular directions of M are regularised: a and (a1, a2, a3) scale the shape redundantly
 // (a J_a = a1 J_a1 + a2 J_a2 + a3 J_a3), the bend offset and frequency have zero Jacobian

@@ -1,5 +1,6 @@
 #include "dynamics/dnurbs_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -150,6 +151,17 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
     expanded_.stiffness = kronecker_identity(scalar_.stiffness, 3);
   } else {
     block_pattern_ = dense_block_pattern(pattern_.scalar, 4);
+    weight_inertia_ = settings.weight_inertia;
+    if (!(weight_inertia_ >= 0.0) || !std::isfinite(weight_inertia_)) {
+      throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
+    }
+    const auto* outer = pattern_.scalar.outerIndexPtr();
+    const auto* inner = pattern_.scalar.innerIndexPtr();
+    for (int i = 0; i < control_point_count_; ++i) {
+      const auto* found = std::lower_bound(inner + outer[i], inner + outer[i + 1], i);
+      weight_diagonal_.push_back(dense_block_value_index(
+          block_pattern_, pattern_.scalar, static_cast<int>(found - inner), i, 3, 3, 4));
+    }
     if (settings.fix_weight_gauge) {
       fix_weight(0);
     }
@@ -433,6 +445,9 @@ void DNurbsModel::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const
         }
       }
     }
+  }
+  for (const int index : weight_diagonal_) {
+    matrices.mass.valuePtr()[index] += weight_inertia_;
   }
 }
 

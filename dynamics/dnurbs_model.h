@@ -41,6 +41,13 @@ struct DNurbsSettings {
   /// setting (the default) weight 0 is a fixed coordinate, which removes exactly that direction
   /// without restricting the shape. Switch it off only when fixing some weight yourself.
   bool fix_weight_gauge = true;
+  /// Free weights only: a constant inertia added to the diagonal of M for every weight
+  /// coordinate (default 0: exact D-NURBS). Beyond the gauge, M(q) can be singular or nearly so
+  /// along weight directions that barely move the shape (exactly singular for a straight line
+  /// with linear parametrization, ~1e-16 relative for a gently bent 25-point cubic), so light
+  /// weights accelerate without bound; a small positive value (e.g. 1e-4 mu) makes the motion
+  /// well posed. It is a constant term of M, so g and energy conservation are unaffected.
+  double weight_inertia = 0.0;
 };
 
 /// A D-NURBS curve or surface as a Model. Use DNurbsCurve or DNurbsSurface to build one.
@@ -144,8 +151,11 @@ class DNurbsModel : public Model {
   // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once.
   ModelMatrices scalar_;
   ModelMatrices expanded_;
-  // Free weights: the 4 x 4 block pattern, sized once.
+  // Free weights: the 4 x 4 block pattern, sized once, and the value index of each weight's
+  // diagonal entry in it.
   SparseMatrix block_pattern_;
+  std::vector<int> weight_diagonal_;
+  double weight_inertia_ = 0.0;
 };
 
 }  // namespace dnurbs

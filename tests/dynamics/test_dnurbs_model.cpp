@@ -5,6 +5,7 @@
 
 #include "dynamics/dnurbs_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -16,6 +17,7 @@
 #include "dynamics/forces.h"
 #include "dynamics/integrator.h"
 #include "dynamics_test_helpers.h"
+#include "nurbs/error.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {
@@ -278,6 +280,42 @@ TEST(FreeWeightModel, WeightGaugeFixesWeightZeroOnly) {
     gauge[model.weight_offset(i)] = q[model.weight_offset(i)];
   }
   EXPECT_LT((model.position_jacobian(q, Eigen::Vector2d(0.37, 0.0)) * gauge).norm(), 1e-15);
+}
+
+// Beyond the gauge, a straight line keeps its parametrized points under a weight change, so M
+// restricted to the free coordinates is singular; weight_inertia removes that.
+TEST(FreeWeightModel, WeightInertiaRegularizesTheSingularMassOfAStraightLine) {
+  auto smallest_free_mass_eigenvalue = [](double inertia) {
+    DNurbsSettings settings = free_weights();
+    settings.weight_inertia = inertia;
+    DNurbsCurve model(test::straight_curve(3, 10), {}, settings);
+    model.fix_control_point(0);
+    model.fix_control_point(model.control_point_count() - 1);
+    ModelMatrices matrices;
+    model.assemble_matrices(model.initial_coordinates(), matrices);
+    const Eigen::MatrixXd M(matrices.mass);
+    std::vector<int> free;
+    const auto& fixed = model.fixed_coordinates();
+    for (int i = 0; i < M.rows(); ++i) {
+      if (!std::binary_search(fixed.begin(), fixed.end(), i)) {
+        free.push_back(i);
+      }
+    }
+    Eigen::MatrixXd reduced(free.size(), free.size());
+    for (size_t i = 0; i < free.size(); ++i) {
+      for (size_t j = 0; j < free.size(); ++j) {
+        reduced(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = M(free[i], free[j]);
+      }
+    }
+    return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(reduced).eigenvalues().minCoeff();
+  };
+  // Round-off level against entries of size ~0.1.
+  EXPECT_LT(std::abs(smallest_free_mass_eigenvalue(0.0)), 1e-15);
+  // The added diagonal 1e-4 on the weights bounds the weight block from below.
+  EXPECT_GT(smallest_free_mass_eigenvalue(1e-4), 0.5e-4);
+  DNurbsSettings bad = free_weights();
+  bad.weight_inertia = -1.0;
+  EXPECT_THROW(DNurbsCurve(test::straight_curve(3, 4), {}, bad), Error);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Deformable superquadrics under the general Integrator: release from a spring returns the rest
 // shape with non-increasing energy, and internal forces leave the momenta unchanged.
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -47,12 +48,17 @@ TEST(DeformableSuperquadric, PulledBySpringThenReleasedReturnsToRestWithEnergyNe
                                           Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
                                           settings);
   System system(model);
-  // A spring pulls the material point u = (0.3, 0.5) 0.4 outwards for 1 s.
+  // A spring pulls the material point u = (0.3, 0.5) toward a target that moves 0.4 outwards
+  // over 0.5 s and then rests, for 1 s.
   const Eigen::Vector2d grip(0.3, 0.5);
   const Eigen::Vector3d start = model.position(model.initial_coordinates(), grip);
-  const Eigen::Vector3d target = start + 0.4 * start.normalized();
+  const Eigen::Vector3d direction = start.normalized();
   system.add_force(0, spring_force(
-                          grip, [target](double) { return target; }, 50.0));
+                          grip,
+                          [start, direction](double t) -> Eigen::Vector3d {
+                            return start + 0.4 * std::min(t / 0.5, 1.0) * direction;
+                          },
+                          50.0));
   IntegratorSettings integrator_settings;
   integrator_settings.newton_iterations = 4;
   integrator_settings.newton_tolerance = 1e-10;

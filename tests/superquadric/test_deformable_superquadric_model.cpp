@@ -30,10 +30,10 @@ using test::some_rotation;
 using test::superellipsoid;
 
 constexpr double kPi = std::numbers::pi;
-const std::vector<double> kExponents = {0.1, 0.5, 1.0, 2.0, 4.0};
+const std::vector<double> exponents = {0.1, 0.5, 1.0, 2.0, 4.0};
 // Material points away from the seams and poles (where the signed powers are not smooth in u, v
 // but x is still smooth in q).
-const std::vector<Eigen::Vector2d> kPoints = {
+const std::vector<Eigen::Vector2d> material_points = {
     {0.3, 0.7}, {-0.9, 2.5}, {1.2, -1.9}, {0.05, -3.0}, {-1.4, 0.2}};
 
 /// The full model (every coordinate free) at a deformed state with local displacements.
@@ -70,10 +70,10 @@ Eigen::VectorXd advance(const Model& model, const Eigen::VectorXd& q, const Eige
 // L against central differences of x(q "+" h e_j) for every velocity coordinate j -----------------
 
 TEST(DeformableSuperquadricModel, JacobianMatchesFiniteDifferencesForEveryCoordinate) {
-  for (const double exponent : kExponents) {
+  for (const double exponent : exponents) {
     const FullState s = full_state(exponent);
     const int n = s.model.velocity_count();
-    for (const Eigen::Vector2d& u : kPoints) {
+    for (const Eigen::Vector2d& u : material_points) {
       const Eigen::MatrixXd jacobian = Eigen::MatrixXd(s.model.position_jacobian(s.q, u));
       ASSERT_EQ(jacobian.rows(), 3);
       ASSERT_EQ(jacobian.cols(), n);
@@ -95,9 +95,9 @@ TEST(DeformableSuperquadricModel, JacobianMatchesFiniteDifferencesForEveryCoordi
 TEST(DeformableSuperquadricModel, JacobianRateMatchesSecondDifferenceAlongConstantVelocity) {
   // Along q(t) = q "+" t qd (constant body angular velocity and rates), qdd = 0 and
   // x'' = Ldot qd.
-  for (const double exponent : kExponents) {
+  for (const double exponent : exponents) {
     const FullState s = full_state(exponent);
-    for (const Eigen::Vector2d& u : kPoints) {
+    for (const Eigen::Vector2d& u : material_points) {
       const Eigen::Vector3d rate = s.model.jacobian_rate_times_velocity(s.q, s.qd, u);
       const double h = 1e-4;
       const Eigen::Vector3d fd =
@@ -234,8 +234,8 @@ TEST(DeformableSuperquadricModel, WithoutRotationAndShapeParametersMatricesAreCo
 // Finite values everywhere ------------------------------------------------------------------------
 
 TEST(DeformableSuperquadricModel, NoNanOrInfAtAnyQuadraturePointForExponentsFromTenthToFour) {
-  for (const double e1 : kExponents) {
-    for (const double e2 : kExponents) {
+  for (const double e1 : exponents) {
+    for (const double e2 : exponents) {
       DeformableSuperquadricSettings settings;
       settings.parts = every_part();
       settings.mesh_cells_u = 4;

@@ -1,0 +1,152 @@
+#include "tools/fit_command.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <Eigen/Eigenvalues>
+
+#include "design/dnurbs_fitting.h"
+#include "design/point_set.h"
+#include "design/superquadric_fitting.h"
+#include "io/mesh_import.h"
+#include "tools/command_line.h"
+
+namespace dnurbs::tools {
+
+const char* const kFitHelp = R"(usage: dnurbs fit superquadric|surface POINTS [options]
+
+Fits a shape to points and prints it with its RMS and max error as JSON. POINTS is a text file
+of "x y z" lines (.xyz, .txt, .csv) or any mesh assimp reads (its vertices are the points).
+
+  superquadric        rigid pose, sizes, squareness, taper and bend (radial distance, BOBYQA)
+  surface             a D-NURBS surface over the points' principal plane, by least squares
+                      plus smoothness with closest-point re-projection
+options (surface):
+  --degree P          degree in u and v (default 3)
+  --spans N           knot spans in u and v (default 4)
+  --smoothness S      weight of the thin-plate energy (default 1e-6)
+  --iterations N      projection-and-solve iterations (default 30)
+
+exit codes: 0 ok, 1 bad data, 2 bad command line
+)";
+
+namespace {
+
+Eigen::MatrixX3d read_points(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".xyz" || extension == ".txt" || extension == ".csv") {
+    return load_points(path);
+  }
+  return mesh_vertices(import_meshes(path));
+}
+
+void print_vector(std::ostream& out, const Eigen::VectorXd& values) {
+  out << "[";
+  for (Eigen::Index i = 0; i < values.size(); ++i) {
+    out << (i > 0 ? ", " : "") << json_double(values[i]);
+  }
+  out << "]";
+}
+
+int fit_superquadric_command(const Eigen::MatrixX3d& points, std::ostream& out) {
+  const SuperquadricFitResult fit = fit_superquadric(points);
+  out << "{\n  \"shape\": \"superquadric\",\n  \"q_s\": ";
+  print_vector(out, fit.shape);
+  out << ",\n  \"centre\": ";
+  print_vector(out, fit.centre);
+  out << ",\n  \"rotation\": ";
+  print_vector(out, Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9));
+  out << ",\n  \"rms_error\": " << json_double(fit.rms_error)
+      << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
+  return kExitOk;
+}
+
+int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, double smoothness,
+                        int iterations, std::ostream& out) {
+  // A flat start over the principal plane of the points, covering their extent.
+  const Eigen::RowVector3d centroid = points.colwise().mean();
+  const Eigen::MatrixX3d centred = points.rowwise() - centroid;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
+  const Eigen::Vector3d axis_u = eigen.eigenvectors().col(2);
+  const Eigen::Vector3d axis_v = eigen.eigenvectors().col(1);
+  const Eigen::VectorXd along_u = centred * axis_u;
+  const Eigen::VectorXd along_v = centred * axis_v;
+  const KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
+  const int n = knots.control_point_count();
+  Eigen::MatrixX3d control(n * n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      double gu = 0.0;
+      double gv = 0.0;
+      for (int k = 1; k <= degree; ++k) {
+        gu += knots[i + k] / degree;
+        gv += knots[j + k] / degree;
+      }
+      const double x = along_u.minCoeff() + gu * (along_u.maxCoeff() - along_u.minCoeff());
+      const double y = along_v.minCoeff() + gv * (along_v.maxCoeff() - along_v.minCoeff());
+      control.row(i * n + j) = centroid + (x * axis_u + y * axis_v).transpose();
+    }
+  }
+  DNurbsSurfaceMaterial material;
+  material.b20 = 1.0;
+  material.b11 = 1.0;
+  material.b02 = 1.0;
+  const DNurbsSurface model(NurbsSurface(knots, knots, control), material);
+  DNurbsFitSettings settings;
+  settings.smoothness = smoothness;
+  settings.max_iterations = iterations;
+  const DNurbsFitResult fit = fit_dnurbs_surface(model, points, settings);
+  out << "{\n  \"shape\": \"nurbs_surface\",\n  \"degree\": " << degree << ",\n  \"knots\": ";
+  print_vector(out, Eigen::Map<const Eigen::VectorXd>(knots.knots().data(), knots.size()));
+  out << ",\n  \"control_points\": ";
+  print_vector(out, fit.coordinates);
+  out << ",\n  \"iterations\": " << fit.iterations
+      << ",\n  \"rms_error\": " << json_double(fit.rms_error)
+      << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
+  if (wants_help(arguments)) {
+    out << kFitHelp;
+    return kExitOk;
+  }
+  if (arguments.size() < 2) {
+    throw UsageError("fit needs a shape (superquadric or surface) and a point file");
+  }
+  const std::string& shape = arguments[0];
+  const std::filesystem::path path = arguments[1];
+  int degree = 3;
+  int spans = 4;
+  double smoothness = 1e-6;
+  int iterations = 30;
+  for (size_t i = 2; i < arguments.size(); ++i) {
+    const std::string& flag = arguments[i];
+    if (flag == "--degree") {
+      degree = parse_int(flag_value(arguments, i), "--degree", 1, 9);
+    } else if (flag == "--spans") {
+      spans = parse_int(flag_value(arguments, i), "--spans", 1, 1000);
+    } else if (flag == "--smoothness") {
+      smoothness = parse_double(flag_value(arguments, i), "--smoothness");
+    } else if (flag == "--iterations") {
+      iterations = parse_int(flag_value(arguments, i), "--iterations", 1, 100000);
+    } else {
+      throw UsageError(std::string("unknown fit option '").append(flag).append("'"));
+    }
+  }
+  if (shape != "superquadric" && shape != "surface") {
+    throw UsageError(
+        std::string("unknown fit shape '").append(shape).append("' (superquadric or surface)"));
+  }
+  const Eigen::MatrixX3d points = read_points(path);
+  if (shape == "superquadric") {
+    return fit_superquadric_command(points, out);
+  }
+  return fit_surface_command(points, degree, spans, smoothness, iterations, out);
+}
+
+}  // namespace dnurbs::tools
