@@ -1,0 +1,114 @@
+#include "surface/adaptive_tessellation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+#include "nurbs/error.h"
+
+namespace dnurbs {
+namespace {
+
+void check_sample_order(int sample_order) {
+  if (sample_order < 1) {
+    throw make_error("surface error: sample order ", sample_order, " is below 1");
+  }
+}
+
+}  // namespace
+
+RefinementTest depth_criterion(int depth) {
+  if (depth < 0) {
+    throw make_error("depth criterion: depth ", depth, " is negative");
+  }
+  return [depth](const RestrictedTriangleGeometry& triangle) { return triangle.level < depth; };
+}
+
+RefinementTest normal_angle_criterion(double max_angle) {
+  if (!(max_angle > 0.0) || !(max_angle <= std::numbers::pi)) {
+    throw make_error("normal angle criterion: max_angle ", max_angle, " is outside (0, pi]");
+  }
+  // Compare cosines: the angle exceeds max_angle where n_a . n_b < cos(max_angle)
+  const double limit = std::cos(max_angle);
+  return [limit](const RestrictedTriangleGeometry& triangle) {
+    const auto& n = triangle.normals;
+    return std::min({n[0].dot(n[1]), n[1].dot(n[2]), n[2].dot(n[0])}) < limit;
+  };
+}
+
+SurfaceError triangle_surface_error(const ParametricSurface& surface,
+                                    const RestrictedTriangleGeometry& triangle, int sample_order) {
+  check_sample_order(sample_order);
+  const int n = sample_order;
+  SurfaceError error;
+  double weighted = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; i + j <= n; ++j) {
+      const int k = n - i - j;
+      // Composite vertex rule: a point is in 1 (corner), 3 (edge) or 6 (interior) sub-triangles
+      const int zeros = (i == 0) + (j == 0) + (k == 0);
+      if (zeros == 2) {
+        continue;  // a corner: eps = 0 there (the vertices lie on the surface)
+      }
+      const double weight = zeros == 1 ? 3.0 : 6.0;
+      const double a = static_cast<double>(i) / n;
+      const double b = static_cast<double>(j) / n;
+      const double c = static_cast<double>(k) / n;
+      const Eigen::Vector2d uv = a * triangle.uv[0] + b * triangle.uv[1] + c * triangle.uv[2];
+      const Eigen::Vector3d linear =
+          a * triangle.points[0] + b * triangle.points[1] + c * triangle.points[2];
+      // seed 003 eq 5: eps(u, v) = |p(u, v) - P_Poly(u, v)|
+      const double eps = (surface.point(uv.x(), uv.y()) - linear).norm();
+      error.max = std::max(error.max, eps);
+      weighted += weight * eps;
+    }
+  }
+  error.mean = weighted / (3.0 * n * n);  // seed 003 eq 6 divided by the area
+  return error;
+}
+
+RefinementTest surface_error_criterion(const ParametricSurface& surface, double max_error,
+                                       double mean_error, int sample_order) {
+  if (!(max_error > 0.0)) {
+    throw make_error("surface error criterion: max_error ", max_error, " is not positive");
+  }
+  if (!(mean_error > 0.0)) {
+    throw make_error("surface error criterion: mean_error ", mean_error, " is not positive");
+  }
+  check_sample_order(sample_order);
+  return
+      [surface, max_error, mean_error, sample_order](const RestrictedTriangleGeometry& triangle) {
+        const SurfaceError error = triangle_surface_error(surface, triangle, sample_order);
+        return error.max > max_error || error.mean > mean_error;
+      };
+}
+
+SurfaceError mesh_surface_error(const RestrictedMesh& mesh, int sample_order) {
+  check_sample_order(sample_order);
+  SurfaceError total;
+  double area = 0.0;
+  double integral = 0.0;
+  for (const int t : mesh.triangles()) {
+    const RestrictedTriangleGeometry g = mesh.geometry(t);
+    const SurfaceError error = triangle_surface_error(mesh.surface(), g, sample_order);
+    const Eigen::Vector2d e1 = g.uv[1] - g.uv[0];
+    const Eigen::Vector2d e2 = g.uv[2] - g.uv[0];
+    const double a = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    total.max = std::max(total.max, error.max);
+    integral += a * error.mean;
+    area += a;
+  }
+  total.mean = area > 0.0 ? integral / area : 0.0;
+  return total;
+}
+
+TriangleMesh tessellate_adaptive(const ParametricSurface& surface,
+                                 const RefinementTest& needs_refinement, int base_cells_u,
+                                 int base_cells_v, int max_level, std::string name) {
+  RestrictedMesh mesh(surface, base_cells_u, base_cells_v);
+  mesh.refine(needs_refinement, max_level);
+  return mesh.to_triangle_mesh(std::move(name));
+}
+
+}  // namespace dnurbs
