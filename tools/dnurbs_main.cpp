@@ -1,4 +1,4 @@
-// The dnurbs command: evaluate, tessellate, export and preview shapes; run the default demo.
+// The dnurbs command: evaluate, tessellate, export and preview shapes; run and inspect scenes.
 
 #include <exception>
 #include <iostream>
@@ -8,7 +8,9 @@
 #include "nurbs/error.h"
 #include "tools/command_line.h"
 #include "tools/eval_command.h"
+#include "tools/info_command.h"
 #include "tools/mesh_commands.h"
+#include "tools/run_command.h"
 
 namespace {
 
@@ -16,7 +18,9 @@ constexpr const char* kHelp = R"(usage: dnurbs COMMAND [ARGS...]
 
 commands:
   eval SHAPE.json --at U[,V] ...   points and derivatives of a curve or surface, as JSON
-  run [--out DIR]                  the default demo: shapes, OBJ meshes and a PNG preview
+  run [SCENE.json] [--out DIR]     run a scene (default: the built-in demo): meshes, CSV log,
+                                   checkpoints, PNG preview; --resume CHECKPOINT continues
+  info [SCENE.json]                models, coordinates, constant matrices, cost per step
   export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
 
@@ -45,7 +49,10 @@ int main(int argc, char** argv) {
       return eval_command(rest, std::cout);
     }
     if (command == "run") {
-      return run_command(rest, program, std::cout);
+      return run_command(rest, program, std::cout, std::cerr);
+    }
+    if (command == "info") {
+      return info_command(rest, std::cout);
     }
     if (command == "export") {
       return export_command(rest, std::cout);

@@ -10,30 +10,10 @@
 #include "io/preview.h"
 #include "io/shape_file.h"
 #include "nurbs/error.h"
-#include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
 #include "tools/command_line.h"
-#include "tools/demo_shapes.h"
 
 namespace dnurbs::tools {
-
-const char* const kRunHelp = R"(usage: dnurbs run [--out DIR] [--resolution N]
-
-Runs the default demo (scene files are not supported yet): builds a rational bicubic "hat"
-surface and an exact rational quadratic torus (periodic in u and v), tessellates them, and
-writes into DIR (default ./dnurbs-out):
-  hat.json, torus.json   the two shapes as shape files (see dnurbs eval)
-  demo.obj, demo.mtl     both meshes, one object and material each
-  demo.png               a shaded preview rendered by preview_mesh.py (python3 + matplotlib)
-
-options:
-  --out DIR           output directory (created if missing)
-  --resolution N      segments per parameter direction, 3..1024 (default 48)
-  -h, --help          this help
-
-Set DNURBS_PYTHON to choose the python interpreter for the preview.
-exit codes: 0 ok, 1 failure (for example no python with matplotlib), 2 bad command line
-)";
 
 const char* const kExportHelp =
     R"(usage: dnurbs export SHAPE.json MESH [--resolution N] [--radius R]
@@ -83,8 +63,10 @@ std::vector<std::string> python_candidates() {
   return candidates;
 }
 
-void render(const std::string& program, const std::filesystem::path& mesh,
-            const std::filesystem::path& png) {
+}  // namespace
+
+void render_preview_png(const std::string& program, const std::filesystem::path& mesh,
+                        const std::filesystem::path& png) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(mesh, error)) {
     throw make_error(mesh.string(), ": the mesh file does not exist");
@@ -92,62 +74,6 @@ void render(const std::string& program, const std::filesystem::path& mesh,
   const std::filesystem::path script = find_preview_script(preview_script_directories(program));
   const std::string python = find_python_with_matplotlib(python_candidates());
   render_preview(python, script, mesh, png);
-}
-
-}  // namespace
-
-int run_command(const std::vector<std::string>& arguments, const std::string& program,
-                std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kRunHelp;
-    return kExitOk;
-  }
-  std::filesystem::path directory = "dnurbs-out";
-  int resolution = 48;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument == "--out") {
-      directory = flag_value(arguments, i);
-    } else if (argument == "--resolution") {
-      resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
-    } else if (argument.starts_with("-")) {
-      throw UsageError("unknown option " + argument);
-    } else {
-      throw UsageError("scene files are not supported yet (got " + argument +
-                       "); run without one for the default demo");
-    }
-  }
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) {
-    throw make_error(directory.string(), ": cannot create the output directory: ", error.message());
-  }
-
-  // Build the demo shapes and keep them as shape files
-  const NurbsSurface hat = hat_surface();
-  const NurbsSurface torus = periodic_torus(0.8, 0.28, Eigen::Vector3d(2.6, 0.0, 0.28));
-  write_shape_file(directory / "hat.json", hat);
-  write_shape_file(directory / "torus.json", torus);
-  out << "wrote " << (directory / "hat.json").string()
-      << " (rational bicubic hat surface, 7 x 7 control points)\n";
-  out << "wrote " << (directory / "torus.json").string()
-      << " (rational quadratic torus, periodic in u and v, 8 x 8 control points)\n";
-
-  // Tessellate and export
-  const std::vector<TriangleMesh> meshes = {
-      tessellate_surface(hat, resolution, resolution, "hat"),
-      tessellate_surface(torus, resolution, std::max(3, resolution / 2), "torus")};
-  const std::filesystem::path obj = directory / "demo.obj";
-  export_meshes(meshes, obj);
-  out << "wrote " << obj.string() << " (hat: " << meshes[0].vertex_count() << " vertices, "
-      << meshes[0].triangle_count() << " triangles; torus: " << meshes[1].vertex_count()
-      << " vertices, " << meshes[1].triangle_count() << " triangles; with demo.mtl)\n";
-
-  // Preview
-  const std::filesystem::path png = directory / "demo.png";
-  render(program, obj, png);
-  out << "wrote " << png.string() << " (shaded preview)\n";
-  return kExitOk;
 }
 
 int export_command(const std::vector<std::string>& arguments, std::ostream& out) {
@@ -215,7 +141,7 @@ int preview_command(const std::vector<std::string>& arguments, const std::string
     throw UsageError("expected MESH.obj and OUT.png, got " + std::to_string(files.size()) +
                      " file arguments");
   }
-  render(program, files[0], files[1]);
+  render_preview_png(program, files[0], files[1]);
   out << "wrote " << files[1] << " (shaded preview of " << files[0] << ")\n";
   return kExitOk;
 }

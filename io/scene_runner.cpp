@@ -1,0 +1,133 @@
+#include "io/scene_runner.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "io/csv_log.h"
+#include "io/mesh_export.h"
+#include "io/shape_file.h"
+#include "nurbs/error.h"
+
+namespace dnurbs {
+namespace {
+
+std::filesystem::path frame_path(const std::filesystem::path& directory, const SceneOutput& output,
+                                 int step) {
+  char number[16];
+  std::snprintf(number, sizeof(number), "%06d", step);
+  std::string name = output.name;
+  name += '_';
+  name += number;
+  name += '.';
+  name += output.format;
+  return directory / "frames" / name;
+}
+
+void create_output_directory(const std::filesystem::path& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    throw make_error(directory.string(), ": cannot create the output directory: ", error.message());
+  }
+}
+
+}  // namespace
+
+SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& options,
+                         const std::function<void(const SceneRunProgress&)>& progress) {
+  const Scene& scene = simulation.scene();
+  const SceneOutput& output = scene.output;
+  const int resolution = options.resolution > 0 ? options.resolution : output.resolution;
+  const std::filesystem::path& directory = options.output_directory;
+  create_output_directory(directory);
+  if (output.mesh_every > 0) {
+    create_output_directory(directory / "frames");
+  }
+
+  SceneRunResult result;
+  result.total_steps = scene.step_count();
+  result.log = directory / "log.csv";
+  CsvLog log(simulation.log_columns());
+  if (options.resume) {
+    simulation.restore(read_checkpoint_file(*options.resume), options.resume->string());
+    std::ifstream in(result.log, std::ios::binary);
+    if (in) {
+      std::ostringstream text;
+      text << in.rdbuf();
+      log.continue_from(text.str(), simulation.steps_done());
+    }
+  } else {
+    log.add_row(0, simulation.log_row(simulation.sample()));
+    if (output.mesh_every > 0) {
+      export_meshes(simulation.meshes(resolution), frame_path(directory, output, 0));
+      ++result.frames_written;
+    }
+  }
+
+  const auto write_state = [&]() {
+    log.write(result.log);
+    result.checkpoint = directory / "checkpoint.json";
+    write_checkpoint_file(result.checkpoint, simulation.checkpoint());
+  };
+  const auto write_final_mesh = [&]() {
+    if (output.final_mesh) {
+      result.final_mesh = directory / (output.name + "." + output.format);
+      export_meshes(simulation.meshes(resolution), result.final_mesh);
+    }
+    if (output.shape_files) {
+      for (int i = 0; i < simulation.system().model_count(); ++i) {
+        if (std::optional<Shape> shape = simulation.shape(i)) {
+          const auto path = directory / (scene.models[static_cast<size_t>(i)].name + ".json");
+          write_shape_file(path, *shape);
+          result.shape_files.push_back(path);
+        }
+      }
+    }
+  };
+
+  while (simulation.steps_done() < result.total_steps) {
+    if (options.stop_after >= 0 && simulation.steps_done() >= options.stop_after) {
+      result.stopped = true;
+      result.steps_done = simulation.steps_done();
+      return result;
+    }
+    try {
+      simulation.step();
+    } catch (const SimulationDiverged& error) {
+      // The simulation is back at its last good state: keep it
+      result.diverged = true;
+      result.message = error.what();
+      const SceneSample sample = simulation.sample();
+      if (log.row_count() == 0 || sample.step % output.log_every != 0) {
+        log.add_row(sample.step, simulation.log_row(sample));
+      }
+      write_state();
+      write_final_mesh();
+      result.steps_done = simulation.steps_done();
+      return result;
+    }
+    const int step = simulation.steps_done();
+    if (step % output.log_every == 0 || step == result.total_steps) {
+      log.add_row(step, simulation.log_row(simulation.sample()));
+    }
+    if (output.mesh_every > 0 && step % output.mesh_every == 0) {
+      export_meshes(simulation.meshes(resolution), frame_path(directory, output, step));
+      ++result.frames_written;
+    }
+    if (output.checkpoint_every > 0 && step % output.checkpoint_every == 0 &&
+        step < result.total_steps) {
+      write_state();
+    }
+    if (progress) {
+      progress({step, result.total_steps, simulation.system().time()});
+    }
+  }
+  write_state();
+  write_final_mesh();
+  result.steps_done = simulation.steps_done();
+  return result;
+}
+
+}  // namespace dnurbs

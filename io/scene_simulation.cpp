@@ -1,0 +1,623 @@
+#include "io/scene_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <utility>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+
+#include "constraints/point_constraints.h"
+#include "constraints/surface_constraints.h"
+#include "constraints/target_trajectory.h"
+#include "dynamics/deformable_superquadric_model.h"
+#include "dynamics/dnurbs_curve.h"
+#include "dynamics/dnurbs_surface.h"
+#include "dynamics/forces.h"
+#include "dynamics/pde_surface.h"
+#include "dynamics/snake.h"
+#include "dynamics/terzopoulos_surface.h"
+#include "surface/grid.h"
+#include "surface/node_chain.h"
+#include "surface/tessellation.h"
+
+namespace dnurbs {
+namespace {
+
+std::string indexed(const char* list, size_t i) {
+  std::string path = list;
+  path += '[';
+  path += std::to_string(i);
+  path += ']';
+  return path;
+}
+
+[[noreturn]] void fail(const Scene& scene, const std::string& path, const std::string& message) {
+  std::string text = scene.source;
+  text += ": ";
+  text += path;
+  text += ": ";
+  text += message;
+  throw Error(text);
+}
+
+DNurbsSettings dnurbs_settings(const SceneDNurbsSettings& s) {
+  DNurbsSettings settings;
+  settings.weight_mode = s.free_weights ? WeightMode::kFree : WeightMode::kFixed;
+  settings.quadrature_points = s.quadrature_points;
+  settings.minimum_weight = s.minimum_weight;
+  return settings;
+}
+
+// A schedule as a function of time (the spline is built once)
+VectorOfTime vector_of_time(const VectorSchedule& schedule) {
+  if (schedule.times.empty()) {
+    const Eigen::Vector3d value = schedule.values.front();
+    return [value](double) { return value; };
+  }
+  auto trajectory = std::make_shared<TargetTrajectory>(
+      TargetTrajectory::keyframes(schedule.times, schedule.values));
+  return [trajectory](double t) { return trajectory->position(t); };
+}
+
+ScalarOfTime scalar_of_time(const ScalarSchedule& schedule) {
+  VectorSchedule vector;
+  vector.times = schedule.times;
+  for (double v : schedule.values) {
+    vector.values.emplace_back(v, 0.0, 0.0);
+  }
+  VectorOfTime f = vector_of_time(vector);
+  return [f](double t) { return f(t).x(); };
+}
+
+TargetTrajectory trajectory(const VectorSchedule& schedule) {
+  if (schedule.times.empty()) {
+    return TargetTrajectory::fixed(schedule.values.front());
+  }
+  return TargetTrajectory::keyframes(schedule.times, schedule.values);
+}
+
+// A force that acts while start <= t < end
+Force windowed(Force force, double start, double end) {
+  return [force = std::move(force), start, end](const Model& model, double time, ConstVectorRef q,
+                                                ConstVectorRef qd, VectorRef f) {
+    if (time >= start && time < end) {
+      force(model, time, q, qd, f);
+    }
+  };
+}
+
+void fix_points(Model& model, const std::vector<int>& points) {
+  if (auto* dnurbs = dynamic_cast<DNurbsModel*>(&model)) {
+    for (int i : points) {
+      if (i >= dnurbs->control_point_count()) {
+        throw make_error("control point ", i, " does not exist (the model has ",
+                         dnurbs->control_point_count(), ")");
+      }
+      dnurbs->fix_control_point(i);
+    }
+    return;
+  }
+  const int nodes = model.coordinate_count() / 3;
+  for (int i : points) {
+    if (i >= nodes) {
+      throw make_error("node ", i, " does not exist (the model has ", nodes, ")");
+    }
+    const int offset = model.control_point_offset(i);
+    for (int k = 0; k < 3; ++k) {
+      model.fix_coordinate(offset + k);
+    }
+  }
+}
+
+std::unique_ptr<Model> build_model(const SceneModel& spec) {
+  std::unique_ptr<Model> model;
+  if (const auto* c = std::get_if<SceneDNurbsCurve>(&spec.spec)) {
+    DNurbsCurveMaterial material;
+    material.mass_density = c->mass_density;
+    material.damping_density = c->damping_density;
+    material.tension = c->tension;
+    material.rigidity = c->rigidity;
+    model = std::make_unique<DNurbsCurve>(c->curve, material, dnurbs_settings(c->settings));
+  } else if (const auto* s = std::get_if<SceneDNurbsSurface>(&spec.spec)) {
+    DNurbsSurfaceMaterial material;
+    material.mass_density = s->mass_density;
+    material.damping_density = s->damping_density;
+    material.a10 = s->a10;
+    material.a01 = s->a01;
+    material.b20 = s->b20;
+    material.b11 = s->b11;
+    material.b02 = s->b02;
+    auto surface =
+        std::make_unique<DNurbsSurface>(s->surface, material, dnurbs_settings(s->settings));
+    if (spec.boundary.clamp_border) {
+      surface->fix_border();
+    }
+    model = std::move(surface);
+  } else if (const auto* sq = std::get_if<SceneSuperquadric>(&spec.spec)) {
+    DeformableSuperquadricSettings settings;
+    settings.parts = sq->parts == "rigid"    ? DeformableSuperquadricParts::rigid()
+                     : sq->parts == "global" ? DeformableSuperquadricParts::global()
+                                             : DeformableSuperquadricParts::full();
+    settings.mass_density = sq->mass_density;
+    settings.damping_alpha = sq->damping_alpha;
+    settings.damping_beta = sq->damping_beta;
+    settings.shape_stiffness = SuperquadricShapeParameters::Constant(sq->shape_stiffness);
+    settings.local_stiffness = {sq->local_stiffness.x(), sq->local_stiffness.y(),
+                                sq->local_stiffness.z()};
+    settings.mesh_cells_u = sq->mesh_cells_u;
+    settings.mesh_cells_v = sq->mesh_cells_v;
+    settings.quadrature_points = sq->quadrature_points;
+    settings.regularization = sq->regularization;
+    const Eigen::Quaterniond orientation(sq->orientation(0), sq->orientation(1), sq->orientation(2),
+                                         sq->orientation(3));
+    model =
+        std::make_unique<DeformableSuperquadricModel>(sq->shape, sq->centre, orientation, settings);
+  } else if (const auto* t = std::get_if<SceneTerzopoulosSurface>(&spec.spec)) {
+    const Grid grid(t->grid.nodes_u, t->grid.nodes_v, t->grid.spacing, 3);
+    TerzopoulosMaterial material;
+    material.mass_density = t->mass_density;
+    material.damping_density = t->damping_density;
+    material.eta = t->eta;
+    material.xi = t->xi;
+    TerzopoulosSettings settings;
+    settings.normal =
+        t->normal == "classic" ? NormalApproximation::kClassic : NormalApproximation::kChristoffel;
+    settings.delta = t->delta;
+    auto surface = std::make_unique<TerzopoulosSurface>(
+        grid, flat_grid_positions(grid, t->grid.origin, t->grid.axis_u, t->grid.axis_v), material,
+        settings);
+    if (spec.boundary.clamp_border) {
+      surface->clamp_border();
+    }
+    model = std::move(surface);
+  } else if (const auto* p = std::get_if<ScenePdeSurface>(&spec.spec)) {
+    const Grid grid(p->grid.nodes_u, p->grid.nodes_v, p->grid.spacing, 3);
+    PdeSurfaceMaterial material;
+    material.b = p->b;
+    material.c = p->c;
+    material.d = p->d;
+    material.density = p->density;
+    material.damping = p->damping;
+    material.su0 = p->su0;
+    material.su1 = p->su1;
+    material.sv0 = p->sv0;
+    material.sv1 = p->sv1;
+    std::vector<DeformationRegion> regions;
+    for (size_t r = 0; r < p->region_centres.size(); ++r) {
+      regions.push_back({p->region_centres[r], p->region_radii[r]});
+    }
+    model = std::make_unique<PdeSurface>(
+        grid, flat_grid_positions(grid, p->grid.origin, p->grid.axis_u, p->grid.axis_v), material,
+        regions);
+  } else {
+    const auto& snake = std::get<SceneSnake>(spec.spec);
+    const NodeChain chain(static_cast<int>(snake.nodes.size()), snake.closed);
+    NodePositions nodes(static_cast<Eigen::Index>(snake.nodes.size()), 3);
+    for (size_t i = 0; i < snake.nodes.size(); ++i) {
+      nodes.row(static_cast<Eigen::Index>(i)) = snake.nodes[i].transpose();
+    }
+    SnakeMaterial material;
+    material.mass_density = snake.mass_density;
+    material.damping_density = snake.damping_density;
+    material.constant_tension = snake.tension;
+    material.constant_rigidity = snake.rigidity;
+    model = std::make_unique<Snake>(chain, nodes, material);
+  }
+  fix_points(*model, spec.boundary.fixed_points);
+  return model;
+}
+
+// 1 % of the diagonal of a point set's bounding box (tube radius of curve meshes)
+double tube_radius(const Eigen::MatrixX3d& points) {
+  const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+  return diagonal > 0.0 ? 0.01 * diagonal : 0.01;
+}
+
+int segments(int resolution, double scale, int minimum) {
+  return std::max(minimum, static_cast<int>(std::lround(scale * resolution)));
+}
+
+// A (u, v) lattice of model points: nu by nv samples, v periodic (no repeated seam) if asked
+TriangleMesh sampled_mesh(const Model& model, ConstVectorRef q, double u0, double u1, double v0,
+                          double v1, int cells_u, int cells_v, bool periodic_v,
+                          const std::string& name) {
+  const int nu = cells_u + 1;
+  const int nv = periodic_v ? cells_v : cells_v + 1;
+  TriangleMesh mesh;
+  mesh.name = name;
+  mesh.vertices.resize(nu * nv, 3);
+  mesh.uv.resize(nu * nv, 2);
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Vector2d u(u0 + (u1 - u0) * i / cells_u, v0 + (v1 - v0) * j / cells_v);
+      mesh.vertices.row(i * nv + j) = model.position(q, u).transpose();
+      mesh.uv.row(i * nv + j) = u.transpose();
+    }
+  }
+  mesh.triangles.resize(2 * cells_u * cells_v, 3);
+  int t = 0;
+  for (int i = 0; i < cells_u; ++i) {
+    for (int j = 0; j < cells_v; ++j) {
+      const int a = i * nv + j;
+      const int b = (i + 1) * nv + j;
+      const int c = (i + 1) * nv + (j + 1) % nv;
+      const int d = i * nv + (j + 1) % nv;
+      mesh.triangles.row(t++) << a, b, c;
+      mesh.triangles.row(t++) << a, c, d;
+    }
+  }
+  return mesh;
+}
+
+// A polyline of nodes as a degree-1 NURBS curve (for the tube mesh of a snake)
+NurbsCurve polyline(const NodePositions& nodes, bool closed) {
+  const int n = static_cast<int>(nodes.rows());
+  std::vector<double> knots;
+  if (closed) {
+    for (int i = 0; i <= n; ++i) {
+      knots.push_back(static_cast<double>(i) / n);
+    }
+    return NurbsCurve(KnotVector::periodic(1, knots), nodes);
+  }
+  knots.push_back(0.0);
+  for (int i = 0; i < n; ++i) {
+    knots.push_back(static_cast<double>(i) / (n - 1));
+  }
+  knots.push_back(1.0);
+  return NurbsCurve(KnotVector(1, knots), nodes);
+}
+
+std::pair<long long, long long> factor_size(const SparseMatrix& matrix) {
+  // Values that make the pattern positive definite: the factor's pattern is what counts
+  SparseMatrix a = matrix;
+  for (int k = 0; k < a.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
+      it.valueRef() = it.row() == it.col() ? 0.0 : -1.0;
+    }
+  }
+  SparseMatrix diagonal(a.rows(), a.cols());
+  diagonal.setIdentity();
+  Eigen::VectorXd row_count = Eigen::VectorXd::Zero(a.rows());
+  for (int k = 0; k < a.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
+      row_count(it.row()) += 1.0;
+    }
+  }
+  for (int i = 0; i < a.rows(); ++i) {
+    diagonal.coeffRef(i, i) = row_count(i) + 1.0;
+  }
+  a += diagonal;
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(a);  // AMD ordering, as the integrators use
+  if (ldlt.info() != Eigen::Success) {
+    return {matrix.nonZeros(), -1};
+  }
+  return {matrix.nonZeros(), ldlt.matrixL().nestedExpression().nonZeros()};
+}
+
+}  // namespace
+
+SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
+  // Models and boundary conditions
+  for (size_t i = 0; i < scene_.models.size(); ++i) {
+    const SceneModel& spec = scene_.models[i];
+    std::unique_ptr<Model> model;
+    try {
+      model = build_model(spec);
+    } catch (const Error& error) {
+      fail(scene_, indexed("models", i), error.what());
+    }
+    system_.add_model(*model);
+    if (const auto* c = std::get_if<SceneDNurbsCurve>(&spec.spec)) {
+      tube_radii_.push_back(tube_radius(c->curve.control_points()));
+    } else if (const auto* s = std::get_if<SceneSnake>(&spec.spec)) {
+      Eigen::MatrixX3d nodes(static_cast<Eigen::Index>(s->nodes.size()), 3);
+      for (size_t k = 0; k < s->nodes.size(); ++k) {
+        nodes.row(static_cast<Eigen::Index>(k)) = s->nodes[k].transpose();
+      }
+      tube_radii_.push_back(tube_radius(nodes));
+    } else {
+      tube_radii_.push_back(0.0);
+    }
+  }
+  // Forces
+  for (size_t i = 0; i < scene_.forces.size(); ++i) {
+    const SceneForce& force = scene_.forces[i];
+    const std::string path = indexed("forces", i);
+    try {
+      if (const auto* p = std::get_if<ScenePointForce>(&force.spec)) {
+        system_.add_force(p->model, windowed(point_force(p->at, vector_of_time(p->force)),
+                                             force.start, force.end));
+      } else if (const auto* s = std::get_if<SceneSpringForce>(&force.spec)) {
+        system_.add_force(s->model,
+                          windowed(spring_force(s->at, vector_of_time(s->target), s->stiffness),
+                                   force.start, force.end));
+      } else if (const auto* c = std::get_if<SceneControlPointForce>(&force.spec)) {
+        const Model& model = system_.model(c->model);
+        for (size_t k = 0; k < c->control_points.size(); ++k) {
+          const int index = c->control_points[k];
+          try {
+            const int offset = model.control_point_offset(index);
+            if (offset + 3 > model.velocity_count()) {
+              throw make_error("control point ", index, " does not exist");
+            }
+          } catch (const Error& error) {
+            fail(scene_, path + ".control_points[" + std::to_string(k) + "]", error.what());
+          }
+        }
+        system_.add_force(c->model,
+                          windowed(control_point_force(c->control_points, vector_of_time(c->force)),
+                                   force.start, force.end));
+      } else if (const auto* g = std::get_if<SceneGravity>(&force.spec)) {
+        for (int m = 0; m < system_.model_count(); ++m) {
+          if (g->model < 0 || g->model == m) {
+            system_.add_force(m, windowed(gravity(g->acceleration), force.start, force.end));
+          }
+        }
+      } else {
+        const auto& p = std::get<ScenePressure>(force.spec);
+        system_.add_force(p.model,
+                          windowed(pressure(scalar_of_time(p.pressure)), force.start, force.end));
+      }
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      if (message.starts_with(scene_.source + ": ")) {
+        throw;
+      }
+      fail(scene_, path, message);
+    }
+  }
+  // Constraints
+  for (size_t i = 0; i < scene_.constraints.size(); ++i) {
+    const SceneConstraint& c = scene_.constraints[i];
+    BaumgarteParameters parameters;
+    parameters.alpha = c.alpha;
+    parameters.beta = c.beta;
+    try {
+      if (const auto* t = std::get_if<ScenePointTargetConstraint>(&c.spec)) {
+        solver_.add(system_, PointTargetConstraint(t->model, t->at, trajectory(t->target)),
+                    parameters);
+      } else if (const auto* p = std::get_if<ScenePointToPointConstraint>(&c.spec)) {
+        solver_.add(system_, PointToPointConstraint(p->model_a, p->at_a, p->model_b, p->at_b),
+                    parameters);
+      } else if (const auto* h = std::get_if<SceneHingeConstraint>(&c.spec)) {
+        solver_.add(
+            system_,
+            HingeConstraint(h->model_a, h->axis_a0, h->axis_a1, h->model_b, h->axis_b0, h->axis_b1),
+            parameters);
+      } else if (const auto* cp = std::get_if<SceneControlPointConstraint>(&c.spec)) {
+        solver_.add(system_, ControlPointConstraint(cp->model, cp->control_point, cp->target),
+                    parameters);
+      } else if (const auto* n = std::get_if<SceneSurfaceNormalConstraint>(&c.spec)) {
+        solver_.add(system_, SurfaceNormalConstraint(n->model, n->at, n->direction), parameters);
+      } else {
+        const auto& cos = std::get<SceneCurveOnSurfaceConstraint>(c.spec);
+        for (auto& constraint : curve_on_surface_constraints(system_, cos.curve_model,
+                                                             cos.surface_model, cos.samples)) {
+          solver_.add(system_, std::move(constraint), parameters);
+        }
+      }
+    } catch (const Error& error) {
+      fail(scene_, indexed("constraints", i), error.what());
+    }
+  }
+  // Probes: the model must be able to place the point
+  for (size_t i = 0; i < scene_.probes.size(); ++i) {
+    try {
+      const Eigen::Vector3d x = system_.position(scene_.probes[i].model, scene_.probes[i].at);
+      if (!x.allFinite()) {
+        throw make_error("the probe's position is not finite");
+      }
+    } catch (const Error& error) {
+      fail(scene_, indexed("probes", i), error.what());
+    }
+  }
+  // Integrator
+  IntegratorSettings settings;
+  settings.scheme = parse_integrator_scheme(scene_.integrator.scheme);
+  settings.newmark_beta = scene_.integrator.newmark_beta;
+  settings.newmark_gamma = scene_.integrator.newmark_gamma;
+  settings.newton_iterations = scene_.integrator.newton_iterations;
+  settings.newton_tolerance = scene_.integrator.newton_tolerance;
+  integrator_ = Integrator(settings);
+  hash_ = scene_state_hash(scene_);
+}
+
+void SceneSimulation::step() {
+  const Eigen::VectorXd q = system_.coordinates();
+  const Eigen::VectorXd qd = system_.velocities();
+  const bool valid = system_.accelerations_valid();
+  const Eigen::VectorXd a = valid ? system_.accelerations() : Eigen::VectorXd();
+  const double time = system_.time();
+  auto restore_last = [&]() {
+    system_.set_state(q, qd, time);
+    if (valid) {
+      system_.set_accelerations(a);
+    }
+  };
+  const double dt = scene_.integrator.dt;
+  try {
+    if (solver_.constraint_count() > 0) {
+      solver_.step(integrator_, system_, dt);
+    } else {
+      integrator_.step(system_, dt);
+    }
+  } catch (const Error& error) {
+    restore_last();
+    throw SimulationDiverged(
+        make_error("step ", steps_ + 1, " (t = ", time + dt, ") diverged: ", error.what()).what());
+  }
+  const double energy = system_.kinetic_energy() + system_.potential_energy();
+  if (!std::isfinite(energy) || energy > scene_.integrator.max_energy) {
+    restore_last();
+    throw SimulationDiverged(
+        make_error("step ", steps_ + 1, " (t = ", time + dt, ") diverged: the energy ", energy,
+                   " exceeds integrator.max_energy = ", scene_.integrator.max_energy)
+            .what());
+  }
+  ++steps_;
+}
+
+SceneSample SceneSimulation::sample() const {
+  SceneSample s;
+  s.step = steps_;
+  s.time = system_.time();
+  s.kinetic_energy = system_.kinetic_energy();
+  s.potential_energy = system_.potential_energy();
+  s.violations = solver_.violations(system_);
+  for (const auto& probe : scene_.probes) {
+    s.probes.push_back(system_.position(probe.model, probe.at));
+  }
+  return s;
+}
+
+std::vector<std::string> SceneSimulation::log_columns() const {
+  std::vector<std::string> columns = {"time", "kinetic_energy", "potential_energy", "total_energy",
+                                      "max_violation"};
+  for (int i = 0; i < solver_.constraint_count(); ++i) {
+    columns.push_back("violation_" + std::to_string(i));
+  }
+  for (const auto& probe : scene_.probes) {
+    for (const char* axis : {"_x", "_y", "_z"}) {
+      columns.push_back(probe.name + axis);
+    }
+  }
+  return columns;
+}
+
+std::vector<double> SceneSimulation::log_row(const SceneSample& s) const {
+  std::vector<double> row = {s.time, s.kinetic_energy, s.potential_energy,
+                             s.kinetic_energy + s.potential_energy,
+                             s.violations.size() > 0 ? s.violations.maxCoeff() : 0.0};
+  for (Eigen::Index i = 0; i < s.violations.size(); ++i) {
+    row.push_back(s.violations(i));
+  }
+  for (const auto& x : s.probes) {
+    row.insert(row.end(), {x.x(), x.y(), x.z()});
+  }
+  return row;
+}
+
+std::vector<TriangleMesh> SceneSimulation::meshes(int resolution) const {
+  std::vector<TriangleMesh> result;
+  for (int i = 0; i < system_.model_count(); ++i) {
+    const SceneModel& spec = scene_.models[static_cast<size_t>(i)];
+    const Model& model = system_.model(i);
+    const Eigen::VectorXd q = system_.coordinates(i);
+    const Eigen::Vector2d& scale = spec.resolution_scale;
+    if (const auto* surface = dynamic_cast<const DNurbsSurface*>(&model)) {
+      const NurbsSurface shape = surface->surface(q);
+      result.push_back(tessellate_surface(
+          shape, segments(resolution, scale.x(), shape.knots_u().is_periodic() ? 3 : 1),
+          segments(resolution, scale.y(), shape.knots_v().is_periodic() ? 3 : 1), spec.name));
+    } else if (const auto* curve = dynamic_cast<const DNurbsCurve*>(&model)) {
+      result.push_back(tessellate_curve_tube(curve->curve(q),
+                                             segments(4 * resolution, scale.x(), 3),
+                                             tube_radii_[static_cast<size_t>(i)], 12, spec.name));
+    } else if (const auto* terzopoulos = dynamic_cast<const TerzopoulosSurface*>(&model)) {
+      result.push_back(
+          grid_triangle_mesh(terzopoulos->grid(), terzopoulos->positions(q), spec.name));
+    } else if (const auto* pde = dynamic_cast<const PdeSurface*>(&model)) {
+      result.push_back(grid_triangle_mesh(pde->grid(), pde->positions(q), spec.name));
+    } else if (const auto* snake = dynamic_cast<const Snake*>(&model)) {
+      result.push_back(tessellate_curve_tube(polyline(snake->positions(q), snake->chain().closed()),
+                                             segments(4 * resolution, scale.x(), 3),
+                                             tube_radii_[static_cast<size_t>(i)], 12, spec.name));
+    } else {
+      // Superquadric: u latitude in [-pi/2, pi/2], v longitude in [-pi, pi) (periodic)
+      const double pi = std::numbers::pi;
+      result.push_back(sampled_mesh(model, q, -pi / 2, pi / 2, -pi, pi,
+                                    segments(resolution, scale.x(), 2),
+                                    segments(resolution, scale.y(), 3), true, spec.name));
+    }
+  }
+  return result;
+}
+
+std::optional<Shape> SceneSimulation::shape(int i) const {
+  const Model& model = system_.model(i);
+  const Eigen::VectorXd q = system_.coordinates(i);
+  if (const auto* surface = dynamic_cast<const DNurbsSurface*>(&model)) {
+    return Shape(surface->surface(q));
+  }
+  if (const auto* curve = dynamic_cast<const DNurbsCurve*>(&model)) {
+    return Shape(curve->curve(q));
+  }
+  return std::nullopt;
+}
+
+Checkpoint SceneSimulation::checkpoint() const {
+  Checkpoint c;
+  c.scene = scene_.source;
+  c.scene_hash = hash_;
+  c.step = steps_;
+  c.time = system_.time();
+  c.coordinates = system_.coordinates();
+  c.velocities = system_.velocities();
+  c.accelerations_valid = system_.accelerations_valid();
+  if (c.accelerations_valid) {
+    c.accelerations = system_.accelerations();
+  }
+  return c;
+}
+
+void SceneSimulation::restore(const Checkpoint& checkpoint, const std::string& source) {
+  if (checkpoint.scene_hash != hash_) {
+    throw make_error(source, ": scene_hash: expected ", hash_, " (the hash of ", scene_.source,
+                     "), got ", checkpoint.scene_hash,
+                     ": the checkpoint belongs to another scene or the scene has changed");
+  }
+  if (checkpoint.coordinates.size() != system_.coordinate_count()) {
+    throw make_error(source, ": q: expected ", system_.coordinate_count(), " coordinates, got ",
+                     checkpoint.coordinates.size());
+  }
+  if (checkpoint.velocities.size() != system_.velocity_count()) {
+    throw make_error(source, ": qd: expected ", system_.velocity_count(), " velocities, got ",
+                     checkpoint.velocities.size());
+  }
+  system_.set_state(checkpoint.coordinates, checkpoint.velocities, checkpoint.time);
+  if (checkpoint.accelerations_valid) {
+    system_.set_accelerations(checkpoint.accelerations);
+  }
+  steps_ = checkpoint.step;
+}
+
+std::vector<SceneModelCost> SceneSimulation::cost() const {
+  std::vector<SceneModelCost> costs;
+  for (int i = 0; i < system_.model_count(); ++i) {
+    const Model& model = system_.model(i);
+    SceneModelCost c;
+    c.name = scene_.models[static_cast<size_t>(i)].name;
+    c.type = scene_model_type(scene_.models[static_cast<size_t>(i)]);
+    c.coordinates = model.coordinate_count();
+    c.velocities = model.velocity_count();
+    c.fixed = static_cast<int>(model.fixed_coordinates().size());
+    c.constant_matrices = model.matrices_are_constant();
+    c.kronecker_block = model.kronecker_block_size();
+    ModelMatrices matrices;
+    if (c.kronecker_block > 0 && model.scalar_matrices() != nullptr) {
+      matrices = *model.scalar_matrices();
+    } else {
+      model.assemble_matrices(model.initial_coordinates(), matrices);
+    }
+    SparseMatrix sum = matrices.mass;
+    if (matrices.damping.nonZeros() > 0) {
+      sum += matrices.damping;
+    }
+    if (matrices.stiffness.nonZeros() > 0) {
+      sum += matrices.stiffness;
+    }
+    // The christoffel Terzopoulos stiffness is not symmetric: factor its symmetric pattern
+    const SparseMatrix transposed = sum.transpose();
+    sum += transposed;
+    const auto [matrix, factor] = factor_size(sum);
+    c.matrix_non_zeros = matrix;
+    c.factor_non_zeros = factor;
+    costs.push_back(c);
+  }
+  return costs;
+}
+
+}  // namespace dnurbs

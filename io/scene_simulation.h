@@ -1,0 +1,102 @@
+#pragma once
+// A scene turned into a running simulation: the System of its models (with boundary
+// conditions), the applied forces with their time windows, the constraint solver and the
+// integrator; one step at a time, with divergence detection, sampling for the CSV log, meshes of
+// the current shapes, checkpoints and a cost estimate.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "constraints/constraint_solver.h"
+#include "dynamics/integrator.h"
+#include "dynamics/system.h"
+#include "io/checkpoint.h"
+#include "io/scene.h"
+#include "nurbs/error.h"
+#include "surface/triangle_mesh.h"
+
+namespace dnurbs {
+
+/// Thrown by SceneSimulation::step when a step diverges (non-finite state or energy above
+/// integrator.max_energy); the simulation is back at the last good state.
+class SimulationDiverged : public Error {
+ public:
+  explicit SimulationDiverged(const std::string& message) : Error(message) {}
+};
+
+/// What is logged at one step.
+struct SceneSample {
+  int step = 0;
+  double time = 0.0;
+  double kinetic_energy = 0.0;
+  double potential_energy = 0.0;
+  Eigen::VectorXd violations;           ///< |C_i| per constraint
+  std::vector<Eigen::Vector3d> probes;  ///< positions of the scene's probes
+};
+
+/// Size and cost of one model.
+struct SceneModelCost {
+  std::string name;
+  std::string type;
+  int coordinates = 0;
+  int velocities = 0;
+  int fixed = 0;                   ///< fixed velocity coordinates
+  bool constant_matrices = false;  ///< M, D, K assembled and factored once
+  int kronecker_block = 0;         ///< 3 when x, y, z share one scalar matrix
+  long long matrix_non_zeros = 0;  ///< of M + D + K (of the scalar matrix when kronecker_block)
+  long long factor_non_zeros =
+      0;  ///< of L of its LDL^T factor (AMD ordering, as the integrators use)
+};
+
+class SceneSimulation {
+ public:
+  /// Builds everything; throws Error "<source>: <json path>: <problem>" when the library
+  /// rejects a model, boundary condition, force or constraint.
+  explicit SceneSimulation(Scene scene);
+
+  const Scene& scene() const { return scene_; }
+  const System& system() const { return system_; }
+  const ConstraintSolver& constraints() const { return solver_; }
+  const Integrator& integrator() const { return integrator_; }
+  /// Steps done so far (restored by a checkpoint).
+  int steps_done() const { return steps_; }
+
+  /// Advances one integrator.dt. Throws SimulationDiverged (state back to the last good one)
+  /// if the integrator rejects the step or the energy is not finite or above max_energy.
+  void step();
+
+  SceneSample sample() const;
+  /// Column names of the CSV log (after "step") and the row of a sample.
+  std::vector<std::string> log_columns() const;
+  std::vector<double> log_row(const SceneSample& sample) const;
+
+  /// One mesh per model at the current state, named after the model; `resolution` segments per
+  /// direction times the model's resolution_scale.
+  std::vector<TriangleMesh> meshes(int resolution) const;
+
+  /// Model i's current shape if it is a D-NURBS curve or surface.
+  std::optional<Shape> shape(int i) const;
+
+  Checkpoint checkpoint() const;
+  /// Continues from a checkpoint; throws Error naming `source` if its scene hash or sizes do not
+  /// match this scene.
+  void restore(const Checkpoint& checkpoint, const std::string& source);
+
+  /// Per-model sizes and costs at the initial state.
+  std::vector<SceneModelCost> cost() const;
+
+ private:
+  Scene scene_;
+  System system_;
+  ConstraintSolver solver_;
+  Integrator integrator_;
+  std::string hash_;
+  int steps_ = 0;
+  std::vector<double> tube_radii_;  ///< curves and snakes: tube radius of their meshes
+};
+
+}  // namespace dnurbs

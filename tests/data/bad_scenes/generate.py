@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+# Regenerates the corpus of malformed scenes (one mutation of a valid base scene each) and
+# expected_messages.tsv, which tests/io/test_scene.cpp checks: python3 generate.py
+import json, copy, os
+base = {
+  "models": [
+    {"name": "sheet", "type": "dnurbs_surface",
+     "shape": {"type": "nurbs_surface", "degree_u": 1, "degree_v": 1,
+               "knots_u": [0, 0, 0.5, 1, 1], "knots_v": [0, 0, 0.5, 1, 1],
+               "control_points": [[[0,0,0],[0,1,0],[0,2,0]],[[1,0,0],[1,1,0],[1,2,0]],[[2,0,0],[2,1,0],[2,2,0]]]},
+     "material": {"mass_density": 1, "a10": 1, "a01": 1}},
+    {"name": "snake", "type": "snake", "nodes": [[0,0,1],[1,0,1],[2,0,1],[3,0,1]],
+     "material": {"tension": 1}}
+  ],
+  "forces": [
+    {"type": "spring", "model": "sheet", "at": [0.5, 0.5], "stiffness": 1,
+     "target": {"times": [0, 1, 2], "values": [[1,1,0],[1,1,1],[1,1,2]]}},
+    {"type": "control_point", "model": "snake", "control_points": [1], "force": [0, 0, 1]}
+  ],
+  "constraints": [{"type": "point_target", "model": "sheet", "at": [0, 0], "target": [0, 0, 0]}],
+  "integrator": {"scheme": "newmark", "dt": 0.01},
+  "run": {"steps": 10},
+  "probes": [{"name": "middle", "model": "sheet", "at": [0.5, 0.5]}]
+}
+cases = []
+def case(name, mutate, *expected, raw=None):
+    cases.append((name, mutate, expected, raw))
+def m(f):
+    return f
+case("not_json", None, "(document)", "expected valid JSON", raw='{"models": [')
+case("top_level_array", None, "(top level)", "expected an object", raw='[1, 2]\n')
+def f(s): s["modles"] = []
+case("unknown_top_key", f, "modles: unknown key")
+def f(s): del s["models"]
+case("missing_models", f, "models: missing key")
+def f(s): s["models"] = []
+case("empty_models", f, "models: expected at least one model")
+def f(s): s["models"][0]["type"] = "nurbs"
+case("unknown_model_type", f, "models[0].type: expected one of", "got string \"nurbs\"")
+def f(s): del s["models"][1]["type"]
+case("missing_model_type", f, "models[1].type: missing key")
+def f(s): s["models"][1]["name"] = "sheet"
+case("duplicate_model_name", f, "models[1].name: expected a unique model name")
+def f(s): s["models"][0]["material"]["mass_density"] = -1
+case("negative_mass_density", f, "models[0].material.mass_density: expected a number >= 0")
+def f(s): s["models"][1]["material"]["tensoin"] = 1
+case("unknown_material_key", f, "models[1].material.tensoin: unknown key")
+def f(s): s["models"][0]["shape"]["knots_u"] = [0, 0, 0.5, 0.2, 1]
+case("decreasing_knots", f, "models[0].shape.knots_u", "invalid knots")
+def f(s): s["models"][0]["shape_file"] = "sheet.json"
+case("shape_and_shape_file", f, "models[0].shape: expected exactly one of")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["shape_file"] = "does_not_exist.json"
+case("missing_shape_file", f, "models[0].shape_file", "does not exist")
+def f(s): s["models"][0]["shape"] = {"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0,0,0],[1,0,0]]}
+case("curve_shape_for_surface", f, "models[0].shape: expected a nurbs_surface for this model type")
+def f(s): s["models"][0]["weights"] = "loose"
+case("bad_weight_mode", f, "models[0].weights: expected one of fixed, free")
+def f(s): s["models"][1]["boundary"] = {"clamp_border": True}
+case("clamp_border_on_snake", f, "models[1].boundary.clamp_border: expected false")
+def f(s): s["models"][0]["boundary"] = {"fixed_points": [99]}
+case("fixed_point_out_of_range", f, "models[0]:", "control point 99 does not exist")
+def f(s): s["models"][1]["nodes"] = [[0,0,0],[1,0,0]]
+case("snake_too_few_nodes", f, "models[1].nodes: expected at least 3 nodes")
+def f(s): s["models"][1]["nodes"][0] = [1, 2]
+case("snake_node_not_a_point", f, "models[1].nodes[0]: expected [x, y, z]")
+def f(s): s["forces"][0]["type"] = "torque"
+case("unknown_force_type", f, "forces[0].type: expected one of point, spring, control_point, gravity, pressure")
+def f(s): s["forces"][0]["model"] = "shet"
+case("unknown_model_name", f, "forces[0].model: expected the name or index of a model", "unknown model name \"shet\"")
+def f(s): s["forces"][0]["model"] = 5
+case("model_index_out_of_range", f, "forces[0].model: expected a model index in 0..1")
+def f(s): s["forces"][0]["stiffness"] = -2
+case("negative_stiffness", f, "forces[0].stiffness: expected a number >= 0")
+def f(s): s["forces"][0]["target"]["times"] = [0, 0, 2]
+case("keyframes_not_increasing", f, "forces[0].target.times[1]: expected strictly increasing keyframe times")
+def f(s): s["forces"][0]["target"]["values"] = [[1,1,0],[1,1,1]]
+case("keyframe_count_mismatch", f, "forces[0].target.values: expected 3 values")
+def f(s): s["forces"][0]["start"] = 2; s["forces"][0]["end"] = 1
+case("end_before_start", f, "forces[0].end: expected an end time > start")
+def f(s): s["forces"][1]["control_points"] = [2, 40]
+case("control_point_out_of_range", f, "forces[1].control_points[1]:", "outside 0..3")
+def f(s): s["forces"].append({"type": "pressure", "model": "sheet", "pressure": "high"})
+case("pressure_not_a_number", f, "forces[2].pressure: expected a number or")
+def f(s): s["forces"][0]["at"] = [0.1, 0.2, 0.3]
+case("parameter_with_three_values", f, "forces[0].at: expected a material parameter [u] or [u, v]")
+def f(s): s["constraints"][0]["type"] = "weld"
+case("unknown_constraint_type", f, "constraints[0].type: expected one of point_target")
+def f(s): s["constraints"][0]["alpha"] = -1
+case("negative_alpha", f, "constraints[0].alpha: expected a number >= 0")
+def f(s): s["constraints"][0] = {"type": "hinge", "model_a": 0, "axis_a": [[0, 0]], "model_b": 1, "axis_b": [[0], [1]]}
+case("hinge_axis_malformed", f, "constraints[0].axis_a: expected two material parameters")
+def f(s): s["constraints"][0] = {"type": "surface_normal", "model": "snake", "at": [0.5], "direction": [0, 0, 1]}
+case("surface_normal_on_snake", f, "constraints[0]:")
+def f(s): s["constraints"][0]["target"] = {"times": [0, 1], "values": [[0, 0, 0], [0, 0]]}
+case("constraint_target_not_a_point", f, "constraints[0].target.values[1]: expected [x, y, z]")
+def f(s): s["integrator"]["scheme"] = "rk4"
+case("unknown_scheme", f, "integrator.scheme: expected one of central, implicit-euler, newmark")
+def f(s): s["integrator"]["dt"] = 0
+case("zero_dt", f, "integrator.dt: expected a number > 0")
+def f(s): s["integrator"]["dt"] = "0.01"
+case("dt_as_string", f, "integrator.dt: expected a finite number, got string \"0.01\"")
+def f(s): s["run"] = {"steps": 10, "duration": 1.0}
+case("steps_and_duration", f, "run: expected exactly one of \"steps\" and \"duration\"")
+def f(s): del s["run"]
+case("missing_run", f, "run: missing key")
+def f(s): s["run"] = {"steps": 10.5}
+case("fractional_steps", f, "run.steps: expected an integer in 1..100000000")
+def f(s): del s["probes"][0]["at"]
+case("probe_without_parameter", f, "probes[0].at: missing key")
+def f(s): s["probes"][0]["name"] = "a,b"
+case("probe_name_with_comma", f, "probes[0].name: expected a non-empty name without commas")
+def f(s): s["output"] = {"format": "fbx"}
+case("unknown_mesh_format", f, "output.format: expected one of obj, stl, ply, gltf, glb")
+def f(s): s["output"] = {"format": "stl", "preview": True}
+case("preview_of_stl", f, "output.preview: expected false unless output.format is \"obj\"")
+def f(s): s["output"] = {"resolution": 2}
+case("resolution_too_small", f, "output.resolution: expected an integer in 3..1024")
+def f(s): s["models"].append({"type": "superquadric", "shape": {"e1": 5}})
+case("superquadric_squareness", f, "models[2].shape.e1: expected a squareness in 0.1..4")
+def f(s): s["models"].append({"type": "superquadric", "orientation": [1, 1, 0, 0]})
+case("non_unit_quaternion", f, "models[2].orientation: expected a unit quaternion")
+def f(s): s["models"].append({"type": "terzopoulos_surface", "grid": {"nodes": [2, 5], "spacing": 0.1}})
+case("grid_too_small", f, "models[2].grid.nodes[0]: expected an integer in 3..4096")
+def f(s): s["models"].append({"type": "pde_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "regions": [{"centre": [0, 0, 0], "radius": 0}]})
+case("zero_region_radius", f, "models[2].regions[0].radius: expected a number > 0")
+def f(s): s["models"].append({"type": "terzopoulos_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "material": {"eta": [[1, 2], [0, 1]]}})
+case("asymmetric_eta", f, "models[2]:")
+def f(s): s["models"][0]["material"]["a10"] = [1]
+case("material_not_a_number", f, "models[0].material.a10: expected a finite number, got an array of 1 values")
+
+import sys
+out = os.path.dirname(os.path.abspath(__file__))
+for f in os.listdir(out):
+    if f.endswith('.json') or f.endswith('.tsv'):
+        os.remove(os.path.join(out, f))
+lines = []
+for name, mutate, expected, raw in cases:
+    if raw is not None:
+        text = raw
+    else:
+        s = copy.deepcopy(base)
+        mutate(s)
+        text = json.dumps(s, indent=1) + "\n"
+    open(os.path.join(out, name + ".json"), "w").write(text)
+    lines.append(name + ".json\t" + "\t".join(expected))
+open(os.path.join(out, "expected_messages.tsv"), "w").write(
+    "# file<TAB>substrings its error message must contain (tests/io/test_scene.cpp)\n" + "\n".join(lines) + "\n")
+print(len(cases))

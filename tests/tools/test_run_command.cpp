@@ -1,0 +1,303 @@
+// Runs the built `dnurbs run` and `dnurbs info`: the default demo, every example scene, a run
+// stopped part-way and resumed, a diverging scene, malformed scenes, help and progress output.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/checkpoint.h"
+#include "io/mesh_import.h"
+#include "io/shape_file.h"
+
+namespace dnurbs {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kDnurbs = std::string(DNURBS_BINARY_DIR) + "/tools/dnurbs";
+const std::filesystem::path kData = DNURBS_TEST_DATA_DIR;
+const std::filesystem::path kExamples = kData / ".." / ".." / "examples" / "scenes";
+
+struct Result {
+  int exit_code = -1;
+  bool signalled = false;
+  std::string out;
+  std::string err;
+};
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("dnurbs_test_run_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs `dnurbs <arguments>` (through /bin/sh; stdout is a pipe, not a terminal)
+Result run(const std::string& arguments) {
+  static int counter = 0;
+  const auto err_path =
+      std::filesystem::temp_directory_path() /
+      ("dnurbs_test_run_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const std::string command = kDnurbs + " " + arguments + " 2>" + err_path.string();
+  Result result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    ADD_FAILURE() << "cannot run " << command;
+    return result;
+  }
+  std::array<char, 4096> buffer{};
+  size_t read = 0;
+  while ((read = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    result.out.append(buffer.data(), read);
+  }
+  const int status = ::pclose(pipe);
+  result.signalled = WIFSIGNALED(status);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.err = read_text(err_path);
+  std::filesystem::remove(err_path);
+  return result;
+}
+
+double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() ? (a - b).lpNorm<Eigen::Infinity>()
+                              : std::numeric_limits<double>::infinity();
+}
+
+TEST(RunCommand, DefaultDemoWritesFramesLogFinalMeshPreviewAndShapes) {
+  const auto directory = fresh_directory("demo");
+  const auto start = std::chrono::steady_clock::now();
+  const Result result = run("run --out " + directory.string() + " --resolution 6");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  RecordProperty("demo_seconds", std::to_string(seconds));
+  // Not a terminal: plain progress lines, one per 10 %
+  EXPECT_THAT(result.out, HasSubstr("step 100/200 (50%)"));
+  EXPECT_EQ(result.out.find('\r'), std::string::npos);
+  for (const char* file :
+       {"log.csv", "checkpoint.json", "demo.obj", "demo.mtl", "demo.png", "hat.json", "torus.json",
+        "frames/demo_000000.obj", "frames/demo_000200.obj"}) {
+    EXPECT_TRUE(std::filesystem::exists(directory / file)) << file;
+  }
+  // The final mesh holds the sculpted hat (6 x 6 cells) and the torus (6 x 3 cells, periodic)
+  const std::vector<TriangleMesh> meshes = import_meshes(directory / "demo.obj");
+  ASSERT_EQ(meshes.size(), 2u);
+  EXPECT_EQ(meshes[0].name, "hat");
+  EXPECT_EQ(meshes[0].triangle_count(), 2 * 6 * 6);
+  EXPECT_EQ(meshes[1].name, "torus");
+  EXPECT_EQ(meshes[1].triangle_count(), 2 * 6 * 3);
+  // The springs raised the crown: the highest vertex of the hat is well above the flat sheet
+  EXPECT_GT(meshes[0].vertices.col(2).maxCoeff(), 0.5);
+  // The log has the initial row and one per step, with the probe columns
+  const std::string log = read_text(directory / "log.csv");
+  EXPECT_THAT(log, ::testing::StartsWith("step,time,kinetic_energy,potential_energy,"
+                                         "total_energy,max_violation,crown_x"));
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1 + 201);
+  EXPECT_EQ(read_checkpoint_file(directory / "checkpoint.json").step, 200);
+  EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "hat.json")));
+  const std::string png = read_text(directory / "demo.png");
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  std::filesystem::remove_all(directory);
+}
+
+TEST(RunCommand, EveryExampleSceneRuns) {
+  for (const auto& entry : std::filesystem::directory_iterator(kExamples)) {
+    if (entry.path().extension() != ".json") {
+      continue;
+    }
+    const std::string name = entry.path().stem().string();
+    const auto directory = fresh_directory("example_" + name);
+    const Result result = run("run " + entry.path().string() + " --out " + directory.string() +
+                              " --resolution 4 --no-preview");
+    EXPECT_FALSE(result.signalled) << name;
+    if (name == "diverging_sheet") {
+      // Diverges on purpose: exit 1, a message, the last good state written
+      EXPECT_EQ(result.exit_code, 1) << name;
+      EXPECT_THAT(result.err, HasSubstr("diverged"));
+      EXPECT_THAT(result.err, HasSubstr("the last good state (step "));
+      EXPECT_TRUE(std::filesystem::exists(directory / "checkpoint.json"));
+      EXPECT_TRUE(std::filesystem::exists(directory / "sheet.obj"));
+    } else {
+      EXPECT_EQ(result.exit_code, 0) << name << ": " << result.err;
+      EXPECT_TRUE(std::filesystem::exists(directory / "log.csv")) << name;
+      EXPECT_TRUE(std::filesystem::exists(directory / "checkpoint.json")) << name;
+    }
+    std::filesystem::remove_all(directory);
+  }
+}
+
+TEST(RunCommand, RunStoppedPartWayAndResumedEndsLikeAnUninterruptedRun) {
+  // The snake example with a checkpoint every 30 steps (outputs do not change the state hash)
+  std::string scene = read_text(kExamples / "snake_contour.json");
+  const std::string key = "\"output\": {";
+  scene.replace(scene.find(key), key.size(), key + "\"checkpoint_every\": 30, ");
+  const auto directory = fresh_directory("resume");
+  const auto scene_path = directory / "snake.json";
+  std::ofstream(scene_path) << scene;
+  const Result whole =
+      run("run " + scene_path.string() + " --out " + (directory / "whole").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const Result stopped = run("run " + scene_path.string() + " --out " +
+                             (directory / "parts").string() + " --stop-after 100");
+  ASSERT_EQ(stopped.exit_code, 0) << stopped.err;
+  EXPECT_THAT(stopped.out, HasSubstr("stopped after step 100"));
+  EXPECT_EQ(read_checkpoint_file(directory / "parts" / "checkpoint.json").step, 90);
+  const Result resumed =
+      run("run " + scene_path.string() + " --out " + (directory / "parts").string() + " --resume " +
+          (directory / "parts" / "checkpoint.json").string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_THAT(resumed.out, HasSubstr("resuming from"));
+  const Checkpoint a = read_checkpoint_file(directory / "whole" / "checkpoint.json");
+  const Checkpoint b = read_checkpoint_file(directory / "parts" / "checkpoint.json");
+  EXPECT_EQ(b.step, 200);
+  EXPECT_EQ(a.time, b.time);
+  // Same operations on the same bits: 0 in practice; 1e-12 is the promised bound
+  EXPECT_LE(max_difference(a.coordinates, b.coordinates), 1e-12);
+  EXPECT_LE(max_difference(a.velocities, b.velocities), 1e-12);
+  EXPECT_EQ(read_text(directory / "parts" / "log.csv"), read_text(directory / "whole" / "log.csv"));
+  // A checkpoint of another scene is refused
+  const Result wrong = run("run " + (kExamples / "curve_sculpting.json").string() + " --out " +
+                           (directory / "wrong").string() + " --resume " +
+                           (directory / "parts" / "checkpoint.json").string());
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_THAT(wrong.err, HasSubstr("scene_hash: expected"));
+  std::filesystem::remove_all(directory);
+}
+
+// A real kill (SIGKILL part-way through a run that writes a mesh every step): every file under
+// its final name is complete, and resuming from the last checkpoint ends like an uninterrupted run
+TEST(RunCommand, KilledRunLeavesCompleteFilesAndResumes) {
+  const std::string demo = read_text(kExamples / "hat_demo.json");
+  const auto directory = fresh_directory("killed");
+  const auto with_output = [&](const std::string& output) {
+    std::string scene = demo;
+    const auto begin = scene.find("\"output\": {");
+    const auto end = scene.find('}', begin);
+    scene.replace(begin, end - begin + 1, "\"output\": {" + output + "}");
+    return scene;
+  };
+  // The state hash ignores "output", so both files describe the same run
+  std::ofstream(directory / "slow.json")
+      << with_output(R"("name": "demo", "mesh_every": 1, "resolution": 40, "checkpoint_every": 5)");
+  std::ofstream(directory / "fast.json") << with_output(R"("name": "demo", "resolution": 4)");
+  const std::string killed = (directory / "killed").string();
+  const int status =
+      std::system(("timeout -s KILL 1.5 " + kDnurbs + " run " + (directory / "slow.json").string() +
+                   " --out " + killed + " >/dev/null 2>&1")
+                      .c_str());
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    std::filesystem::remove_all(directory);
+    GTEST_SKIP() << "the run finished before it could be killed";
+  }
+  // Every mesh and the log under their final names are complete
+  int frames = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(directory / "killed" / "frames")) {
+    if (entry.path().extension() == ".obj") {
+      EXPECT_EQ(import_meshes(entry.path()).size(), 2u) << entry.path();
+      ++frames;
+    }
+  }
+  RecordProperty("frames_before_kill", frames);
+  const std::string log = read_text(directory / "killed" / "log.csv");
+  EXPECT_TRUE(log.empty() || log.back() == '\n');
+  if (!std::filesystem::exists(directory / "killed" / "checkpoint.json")) {
+    std::filesystem::remove_all(directory);
+    GTEST_SKIP() << "killed before the first checkpoint";
+  }
+  const Checkpoint at_kill = read_checkpoint_file(directory / "killed" / "checkpoint.json");
+  EXPECT_EQ(at_kill.step % 5, 0);
+  const Result resumed = run("run " + (directory / "fast.json").string() + " --out " + killed +
+                             " --no-preview --resume " + killed + "/checkpoint.json");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const Result whole = run("run " + (directory / "fast.json").string() + " --no-preview --out " +
+                           (directory / "whole").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const Checkpoint a = read_checkpoint_file(directory / "whole" / "checkpoint.json");
+  const Checkpoint b = read_checkpoint_file(directory / "killed" / "checkpoint.json");
+  EXPECT_EQ(b.step, 200);
+  // Same operations on the same bits: 0 in practice; 1e-12 is the promised bound
+  EXPECT_LE(max_difference(a.coordinates, b.coordinates), 1e-12);
+  EXPECT_LE(max_difference(a.velocities, b.velocities), 1e-12);
+  std::filesystem::remove_all(directory);
+}
+
+TEST(RunCommand, MalformedScenesExitOneNamingFileAndJsonPath) {
+  const auto directory = fresh_directory("bad");
+  for (const auto& [file, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"not_json.json", "(document): expected valid JSON"},
+           {"unknown_model_name.json", "forces[0].model: expected the name or index of a model"},
+           {"zero_dt.json", "integrator.dt: expected a number > 0"},
+           {"fixed_point_out_of_range.json", "models[0]: control point 99 does not exist"},
+           {"surface_normal_on_snake.json", "constraints[0]:"}}) {
+    const auto path = kData / "bad_scenes" / file;
+    const Result result = run("run " + path.string() + " --out " + directory.string());
+    EXPECT_FALSE(result.signalled) << file;
+    EXPECT_EQ(result.exit_code, 1) << file;
+    EXPECT_THAT(result.err, HasSubstr(path.string() + ": " + expected)) << file;
+    const Result info = run("info " + path.string());
+    EXPECT_EQ(info.exit_code, 1) << file;
+    EXPECT_THAT(info.err, HasSubstr(expected)) << file;
+  }
+  const Result missing = run("run " + (kData / "no_such.json").string());
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_THAT(missing.err, HasSubstr("no_such.json: cannot read the scene file"));
+  EXPECT_EQ(run("run --resolution 2").exit_code, 2);
+  EXPECT_EQ(run("run a.json b.json").exit_code, 2);
+  EXPECT_EQ(run("info --bogus").exit_code, 2);
+  std::filesystem::remove_all(directory);
+}
+
+TEST(InfoCommand, DescribesModelsMatricesAndCost) {
+  const Result demo = run("info");
+  ASSERT_EQ(demo.exit_code, 0) << demo.err;
+  EXPECT_THAT(demo.out, HasSubstr("hat (dnurbs_surface): 147 coordinates"));
+  EXPECT_THAT(demo.out, HasSubstr("constant (assembled and factored once)"));
+  EXPECT_THAT(demo.out, HasSubstr("S (x) I_3"));
+  EXPECT_THAT(demo.out, HasSubstr("LDL^T factor"));
+  EXPECT_THAT(demo.out, HasSubstr("estimated cost per step"));
+  // The built-in demo is examples/scenes/hat_demo.json: the same state hash
+  const Result example = run("info " + (kExamples / "hat_demo.json").string());
+  ASSERT_EQ(example.exit_code, 0) << example.err;
+  const auto hash = [](const std::string& text) {
+    const auto at = text.find("state hash: ");
+    return at == std::string::npos ? std::string() : text.substr(at + 12, 16);
+  };
+  EXPECT_EQ(hash(example.out), hash(demo.out));
+  EXPECT_FALSE(hash(demo.out).empty());
+  const Result cloth = run("info " + (kExamples / "cloth_terzopoulos.json").string());
+  ASSERT_EQ(cloth.exit_code, 0) << cloth.err;
+  EXPECT_THAT(cloth.out, HasSubstr("state-dependent (assembled and factored every step)"));
+}
+
+TEST(RunCommand, HelpDescribesRunAndInfo) {
+  const Result run_help = run("run --help");
+  EXPECT_EQ(run_help.exit_code, 0);
+  EXPECT_THAT(run_help.out, HasSubstr("usage: dnurbs run [SCENE.json]"));
+  EXPECT_THAT(run_help.out, HasSubstr("--resume CHECKPOINT"));
+  const Result info_help = run("info --help");
+  EXPECT_EQ(info_help.exit_code, 0);
+  EXPECT_THAT(info_help.out, HasSubstr("usage: dnurbs info"));
+  EXPECT_THAT(run("--help").out, HasSubstr("info [SCENE.json]"));
+}
+
+}  // namespace
+}  // namespace dnurbs

@@ -1,0 +1,344 @@
+#include "tools/run_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "io/scene.h"
+#include "io/scene_runner.h"
+#include "io/scene_simulation.h"
+#include "nurbs/error.h"
+#include "tools/command_line.h"
+#include "tools/mesh_commands.h"
+
+namespace dnurbs::tools {
+
+const char* const kRunHelp =
+    R"(usage: dnurbs run [SCENE.json] [--out DIR] [--resume CHECKPOINT] [options]
+
+Runs a scene file (docs/scene-format.md) and writes into DIR (default ./dnurbs-out):
+  log.csv                   step, time, kinetic/potential/total energy, constraint violations
+                            and probe positions (every output.log_every steps)
+  frames/NAME_STEP.FORMAT   meshes of every model every output.mesh_every steps
+  checkpoint.json           the state every output.checkpoint_every steps and at the end
+  NAME.FORMAT               the final meshes (OBJ by default), NAME.png with output.preview
+  MODEL.json                final D-NURBS shapes with output.shape_files
+Every file is written to a temporary file and renamed, so a killed run leaves no partial file.
+
+Without SCENE.json runs the built-in default demo (examples/scenes/hat_demo.json): a flat
+D-NURBS sheet with a clamped border sculpted into a hat by springs pulling its centre up over
+time (damping, Newmark), and a D-NURBS torus inflated by a pressure pulse; it writes OBJ
+frames, log.csv, the final mesh demo.obj, its preview demo.png and the final shapes hat.json and
+torus.json.
+
+A step that diverges (a non-finite state or an energy above integrator.max_energy) stops the
+run: the last good state is written (checkpoint.json and the final mesh) and the exit code is 1.
+
+options:
+  --out DIR             output directory (created if missing)
+  --resume CHECKPOINT   continue the run from a checkpoint of the same scene (log.csv in DIR is
+                        continued from the checkpoint's step)
+  --resolution N        mesh segments per direction, 3..1024 (overrides output.resolution)
+  --stop-after N        stop after N steps in total without writing the final state (as if
+                        killed there; for testing --resume)
+  --no-preview          skip the PNG preview
+  -h, --help            this help
+
+Set DNURBS_PYTHON to choose the python interpreter for the preview.
+exit codes: 0 ok, 1 bad scene, failed output or diverged run, 2 bad command line
+)";
+
+const char* const kDefaultSceneJson = R"json({
+  "description": "The default demo of `dnurbs run`: a flat D-NURBS sheet with a clamped border is sculpted into a hat by springs that pull its centre up over time (damping, Newmark), while a D-NURBS torus beside it is inflated by a pressure pulse.",
+  "models": [
+    {
+      "name": "hat",
+      "type": "dnurbs_surface",
+      "shape": {
+        "type": "nurbs_surface",
+        "degree_u": 3,
+        "degree_v": 3,
+        "knots_u": [0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1],
+        "knots_v": [0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1],
+        "control_points": [
+          [[-1.2, -1.2, 0.0], [-1.2, -0.8, 0.0], [-1.2, -0.4, 0.0], [-1.2, 0.0, 0.0], [-1.2, 0.4, 0.0], [-1.2, 0.8, 0.0], [-1.2, 1.2, 0.0]],
+          [[-0.8, -1.2, 0.0], [-0.8, -0.8, 0.0], [-0.8, -0.4, 0.0], [-0.8, 0.0, 0.0], [-0.8, 0.4, 0.0], [-0.8, 0.8, 0.0], [-0.8, 1.2, 0.0]],
+          [[-0.4, -1.2, 0.0], [-0.4, -0.8, 0.0], [-0.4, -0.4, 0.0], [-0.4, 0.0, 0.0], [-0.4, 0.4, 0.0], [-0.4, 0.8, 0.0], [-0.4, 1.2, 0.0]],
+          [[0.0, -1.2, 0.0], [0.0, -0.8, 0.0], [0.0, -0.4, 0.0], [0.0, 0.0, 0.0], [0.0, 0.4, 0.0], [0.0, 0.8, 0.0], [0.0, 1.2, 0.0]],
+          [[0.4, -1.2, 0.0], [0.4, -0.8, 0.0], [0.4, -0.4, 0.0], [0.4, 0.0, 0.0], [0.4, 0.4, 0.0], [0.4, 0.8, 0.0], [0.4, 1.2, 0.0]],
+          [[0.8, -1.2, 0.0], [0.8, -0.8, 0.0], [0.8, -0.4, 0.0], [0.8, 0.0, 0.0], [0.8, 0.4, 0.0], [0.8, 0.8, 0.0], [0.8, 1.2, 0.0]],
+          [[1.2, -1.2, 0.0], [1.2, -0.8, 0.0], [1.2, -0.4, 0.0], [1.2, 0.0, 0.0], [1.2, 0.4, 0.0], [1.2, 0.8, 0.0], [1.2, 1.2, 0.0]]
+        ]
+      },
+      "material": {
+        "mass_density": 1.0,
+        "damping_density": 4.0,
+        "a10": 1.0,
+        "a01": 1.0,
+        "b20": 0.2,
+        "b11": 0.2,
+        "b02": 0.2
+      },
+      "boundary": {
+        "clamp_border": true
+      }
+    },
+    {
+      "name": "torus",
+      "type": "dnurbs_surface",
+      "shape": {
+        "type": "nurbs_surface",
+        "degree_u": 2,
+        "degree_v": 2,
+        "periodic_u": true,
+        "periodic_v": true,
+        "knots_u": [0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0],
+        "knots_v": [0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0],
+        "control_points": [
+          [[3.68, 0.0, 0.28], [3.68, 0.0, 0.56], [3.4, 0.0, 0.56], [3.12, 0.0, 0.56], [3.12, 0.0, 0.28], [3.12, 0.0, 0.0], [3.4, 0.0, 0.0], [3.68, 0.0, 0.0]],
+          [[3.68, 1.08, 0.28], [3.68, 1.08, 0.56], [3.4, 0.8, 0.56], [3.12, 0.52, 0.56], [3.12, 0.52, 0.28], [3.12, 0.52, 0.0], [3.4, 0.8, 0.0], [3.68, 1.08, 0.0]],
+          [[2.6, 1.08, 0.28], [2.6, 1.08, 0.56], [2.6, 0.8, 0.56], [2.6, 0.52, 0.56], [2.6, 0.52, 0.28], [2.6, 0.52, 0.0], [2.6, 0.8, 0.0], [2.6, 1.08, 0.0]],
+          [[1.52, 1.08, 0.28], [1.52, 1.08, 0.56], [1.8, 0.8, 0.56], [2.08, 0.52, 0.56], [2.08, 0.52, 0.28], [2.08, 0.52, 0.0], [1.8, 0.8, 0.0], [1.52, 1.08, 0.0]],
+          [[1.52, 0.0, 0.28], [1.52, 0.0, 0.56], [1.8, 0.0, 0.56], [2.08, 0.0, 0.56], [2.08, 0.0, 0.28], [2.08, 0.0, 0.0], [1.8, 0.0, 0.0], [1.52, 0.0, 0.0]],
+          [[1.52, -1.08, 0.28], [1.52, -1.08, 0.56], [1.8, -0.8, 0.56], [2.08, -0.52, 0.56], [2.08, -0.52, 0.28], [2.08, -0.52, 0.0], [1.8, -0.8, 0.0], [1.52, -1.08, 0.0]],
+          [[2.6, -1.08, 0.28], [2.6, -1.08, 0.56], [2.6, -0.8, 0.56], [2.6, -0.52, 0.56], [2.6, -0.52, 0.28], [2.6, -0.52, 0.0], [2.6, -0.8, 0.0], [2.6, -1.08, 0.0]],
+          [[3.68, -1.08, 0.28], [3.68, -1.08, 0.56], [3.4, -0.8, 0.56], [3.12, -0.52, 0.56], [3.12, -0.52, 0.28], [3.12, -0.52, 0.0], [3.4, -0.8, 0.0], [3.68, -1.08, 0.0]]
+        ],
+        "weights": [
+          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
+          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5],
+          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
+          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5],
+          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
+          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5],
+          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
+          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5]
+        ]
+      },
+      "material": {
+        "mass_density": 1.0,
+        "damping_density": 1.0
+      },
+      "resolution_scale": [1.0, 0.5]
+    }
+  ],
+  "forces": [
+    {
+      "type": "spring",
+      "model": "hat",
+      "at": [0.5, 0.5],
+      "stiffness": 150.0,
+      "target": {
+        "times": [0.0, 1.0, 2.0],
+        "values": [[0, 0, 0], [0, 0, 0.9], [0, 0, 1.2]]
+      }
+    },
+    {
+      "type": "spring",
+      "model": "hat",
+      "at": [0.38, 0.38],
+      "stiffness": 60.0,
+      "target": [-0.25, -0.25, 0.9],
+      "start": 0.5
+    },
+    {
+      "type": "spring",
+      "model": "hat",
+      "at": [0.62, 0.38],
+      "stiffness": 60.0,
+      "target": [0.25, -0.25, 0.9],
+      "start": 0.5
+    },
+    {
+      "type": "spring",
+      "model": "hat",
+      "at": [0.38, 0.62],
+      "stiffness": 60.0,
+      "target": [-0.25, 0.25, 0.9],
+      "start": 0.5
+    },
+    {
+      "type": "spring",
+      "model": "hat",
+      "at": [0.62, 0.62],
+      "stiffness": 60.0,
+      "target": [0.25, 0.25, 0.9],
+      "start": 0.5
+    },
+    {
+      "type": "pressure",
+      "model": "torus",
+      "pressure": {
+        "times": [0.0, 0.6, 1.2],
+        "values": [0.0, 0.015, 0.0]
+      }
+    }
+  ],
+  "integrator": {
+    "scheme": "newmark",
+    "dt": 0.01
+  },
+  "run": {
+    "steps": 200
+  },
+  "probes": [
+    {
+      "name": "crown",
+      "model": "hat",
+      "at": [0.5, 0.5]
+    },
+    {
+      "name": "brim",
+      "model": "hat",
+      "at": [0.2, 0.5]
+    }
+  ],
+  "output": {
+    "name": "demo",
+    "mesh_every": 20,
+    "resolution": 48,
+    "preview": true,
+    "shape_files": true,
+    "checkpoint_every": 50
+  }
+}
+)json";
+
+namespace {
+
+// A progress bar on a terminal, else a plain line every 10 %
+class Progress {
+ public:
+  Progress(std::ostream& out, bool terminal) : out_(out), terminal_(terminal) {}
+  void update(const SceneRunProgress& p) {
+    const int percent = p.total > 0 ? static_cast<int>(100LL * p.step / p.total) : 100;
+    if (terminal_) {
+      if (percent == last_ && p.step != p.total) {
+        return;
+      }
+      const int width = 40;
+      const int filled = percent * width / 100;
+      std::ostringstream line;
+      line << "\r[" << std::string(static_cast<size_t>(filled), '#')
+           << std::string(static_cast<size_t>(width - filled), ' ') << "] " << percent << "% step "
+           << p.step << "/" << p.total << " t = " << p.time;
+      out_ << line.str() << std::flush;
+      if (p.step == p.total) {
+        out_ << "\n";
+      }
+    } else if (percent / 10 != last_ / 10 || p.step == p.total) {
+      out_ << "step " << p.step << "/" << p.total << " (" << percent << "%) t = " << p.time << "\n";
+    }
+    last_ = percent;
+  }
+  void finish() {
+    if (terminal_ && last_ >= 0 && last_ < 100) {
+      out_ << "\n";
+    }
+  }
+
+ private:
+  std::ostream& out_;
+  bool terminal_;
+  int last_ = -1;
+};
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& arguments, const std::string& program,
+                std::ostream& out, std::ostream& err) {
+  if (wants_help(arguments)) {
+    out << kRunHelp;
+    return kExitOk;
+  }
+  SceneRunOptions options;
+  std::optional<std::string> scene_file;
+  bool preview = true;
+  for (size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    if (argument == "--out") {
+      options.output_directory = flag_value(arguments, i);
+    } else if (argument == "--resume") {
+      options.resume = flag_value(arguments, i);
+    } else if (argument == "--resolution") {
+      options.resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
+    } else if (argument == "--stop-after") {
+      options.stop_after = parse_int(flag_value(arguments, i), "--stop-after", 0, 100000000);
+    } else if (argument == "--no-preview") {
+      preview = false;
+    } else if (argument.starts_with("-")) {
+      throw UsageError("unknown option " + argument);
+    } else if (scene_file) {
+      throw UsageError("expected one scene file, got " + *scene_file + " and " + argument);
+    } else {
+      scene_file = argument;
+    }
+  }
+
+  const Scene scene = scene_file ? read_scene_file(*scene_file)
+                                 : parse_scene_json(kDefaultSceneJson, "<default demo>");
+  SceneSimulation simulation(scene);
+  const System& system = simulation.system();
+  out << "scene " << scene.source << ": " << system.model_count() << " model(s), "
+      << system.velocity_count() << " velocities (" << system.fixed_coordinates().size()
+      << " fixed), " << scene.forces.size() << " force(s), "
+      << simulation.constraints().constraint_count() << " constraint(s); " << scene.step_count()
+      << " steps of dt = " << scene.integrator.dt << " (" << scene.integrator.scheme << ")\n";
+  if (options.resume) {
+    out << "resuming from " << options.resume->string() << "\n";
+  }
+
+  Progress progress(out, ::isatty(STDOUT_FILENO) == 1);
+  const auto start = std::chrono::steady_clock::now();
+  const SceneRunResult result =
+      run_scene(simulation, options, [&](const SceneRunProgress& p) { progress.update(p); });
+  progress.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (result.stopped) {
+    out << "stopped after step " << result.steps_done << " of " << result.total_steps
+        << " (--stop-after); continue with --resume "
+        << (options.output_directory / "checkpoint.json").string() << "\n";
+    return kExitOk;
+  }
+  out << "ran " << result.steps_done << " of " << result.total_steps << " steps in " << seconds
+      << " s (t = " << system.time() << ")\n";
+  out << "wrote " << result.log.string() << "\n";
+  if (result.frames_written > 0) {
+    out << "wrote " << result.frames_written << " mesh frame(s) to "
+        << (options.output_directory / "frames").string() << "\n";
+  }
+  if (!result.final_mesh.empty()) {
+    out << "wrote " << result.final_mesh.string() << " (final state)\n";
+  }
+  for (const auto& shape : result.shape_files) {
+    out << "wrote " << shape.string() << " (final shape)\n";
+  }
+  out << "wrote " << result.checkpoint.string() << " (step " << result.steps_done << ")\n";
+  if (result.diverged) {
+    err << "dnurbs run: error: " << result.message << "\n"
+        << "dnurbs run: the run stopped; the last good state (step " << result.steps_done
+        << ", t = " << system.time() << ") is in " << result.checkpoint.string()
+        << (result.final_mesh.empty() ? std::string() : " and " + result.final_mesh.string())
+        << "\n";
+    return kExitError;
+  }
+  const ConstraintReport& report = simulation.constraints().last_report();
+  if (!report.message.empty()) {
+    out << "constraints: " << report.message << "\n";
+  }
+  if (scene.output.preview && preview && !result.final_mesh.empty()) {
+    std::filesystem::path png = result.final_mesh;
+    png.replace_extension(".png");
+    render_preview_png(program, result.final_mesh, png);
+    out << "wrote " << png.string() << " (shaded preview of the final frame)\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace dnurbs::tools
