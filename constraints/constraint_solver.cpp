@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include "nurbs/error.h"
 
@@ -105,6 +106,55 @@ void ConstraintSolver::step(Integrator& integrator, System& system, double dt) {
   if (report_.rank_deficient) {
     ++rank_deficient_steps_;
   }
+  if (projection_) {
+    project(system);
+  }
+}
+
+void ConstraintSolver::set_projection(bool enabled, double tolerance, int iterations) {
+  if (!std::isfinite(tolerance) || tolerance < 0.0 || iterations < 1) {
+    throw make_error(
+        "constraint projection needs a tolerance >= 0 and at least one iteration, got ", tolerance,
+        " and ", iterations);
+  }
+  projection_ = enabled;
+  projection_tolerance_ = tolerance;
+  projection_iterations_ = iterations;
+}
+
+void ConstraintSolver::project(System& system) const {
+  // Minimum-norm corrections with the pseudo-inverse of C_q C_q^T (rank-deficient rows allowed);
+  // fixed coordinates are not moved.
+  const int n = system.velocity_count();
+  Eigen::VectorXd keep = Eigen::VectorXd::Ones(n);
+  for (const int index : system.fixed_coordinates()) {
+    keep[index] = 0.0;
+  }
+  const auto correction = [&](const SparseMatrix& jacobian, const Eigen::VectorXd& residual) {
+    const SparseMatrix C_q = jacobian * keep.asDiagonal();
+    const Eigen::MatrixXd gram = Eigen::MatrixXd(C_q * C_q.transpose());
+    const Eigen::VectorXd multipliers = gram.completeOrthogonalDecomposition().solve(residual);
+    return Eigen::VectorXd(C_q.transpose() * multipliers);
+  };
+  Evaluation evaluation;
+  Eigen::VectorXd q = system.coordinates();
+  Eigen::VectorXd qd = system.velocities();
+  Eigen::VectorXd moved(q.size());
+  for (int iteration = 0; iteration < projection_iterations_; ++iteration) {
+    evaluate(system, q, qd, system.time(), evaluation);
+    if (evaluation.value.cwiseAbs().maxCoeff() <= projection_tolerance_) {
+      break;
+    }
+    const Eigen::VectorXd step = -correction(evaluation.jacobian, evaluation.value);
+    system.advance_coordinates(q, step, moved);
+    q = moved;
+  }
+  evaluate(system, q, qd, system.time(), evaluation);
+  qd -= correction(evaluation.jacobian, evaluation.rate);
+  if (!q.allFinite() || !qd.allFinite()) {
+    return;  // keep the unprojected (finite) state rather than a broken one
+  }
+  system.set_state(q, qd, system.time());
 }
 
 void ConstraintSolver::solve_iteration(const System& system, const StepSystem& step,
