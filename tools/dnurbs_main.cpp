@@ -8,6 +8,7 @@
 #include "nurbs/error.h"
 #include "tools/command_line.h"
 #include "tools/eval_command.h"
+#include "tools/fit_command.h"
 #include "tools/info_command.h"
 #include "tools/mesh_commands.h"
 #include "tools/run_command.h"
@@ -23,6 +24,7 @@ commands:
   info [SCENE.json]                models, coordinates, constant matrices, cost per step
   export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
+  fit superquadric|surface POINTS  fit a superquadric or a D-NURBS surface to points, as JSON
 
 Run `dnurbs COMMAND --help` for a command's options.
 exit codes: 0 ok, 1 bad input or failed processing, 2 bad command line
@@ -56,6 +58,9 @@ int main(int argc, char** argv) {
     }
     if (command == "export") {
       return export_command(rest, std::cout);
+    }
+    if (command == "fit") {
+      return fit_command(rest, std::cout);
     }
     if (command == "preview") {
       return preview_command(rest, program, std::cout);

@@ -275,6 +275,29 @@ TEST(SceneFile, EveryMalformedSceneOfTheCorpusNamesItsJsonPath) {
   }
 }
 
+TEST(SceneFile, EveryKeyIsDocumented) {
+  std::ifstream in(kData / ".." / ".." / "docs" / "scene-format.md");
+  ASSERT_TRUE(in) << "docs/scene-format.md is missing";
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string docs = text.str();
+  std::set<std::string> paths;
+  key_paths(Json::parse(scene_to_json(full_scene())), "", paths);
+  for (const auto& path : paths) {
+    // Keys inside a "shape" are the shape format of dnurbs eval (or the superquadric's q_s,
+    // listed in one table cell)
+    if (path.starts_with("models[].shape.")) {
+      continue;
+    }
+    // In a table (`key`, `prefix.key`) or in an example ("key": ...)
+    const std::string key = path.substr(path.rfind('.') + 1);
+    const bool documented = docs.find("`" + key + "`") != std::string::npos ||
+                            docs.find("." + key + "`") != std::string::npos ||
+                            docs.find("\"" + key + "\":") != std::string::npos;
+    EXPECT_TRUE(documented) << path << " is not in docs/scene-format.md";
+  }
+}
+
 TEST(SceneFile, UnreadableFileIsNamed) {
   try {
     read_scene_file(kData / "no_such_scene.json");
