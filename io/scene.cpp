@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "constraints/target_trajectory.h"
+#include "io/json_messages.h"
 #include "nurbs/error.h"
 
 namespace dnurbs {
@@ -25,49 +26,8 @@ constexpr const char* kModelTypes[] = {"superquadric", "terzopoulos_surface", "p
 constexpr const char* kShapeKeys[] = {"a",  "a1", "a2", "a3", "e1",  "e2", "t1",
                                       "t2", "b1", "b2", "b3", "tau", "sx", "sy"};
 
-std::string format_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
-}
-
-// A short description of a JSON value for messages
-std::string describe(const Json& value) {
-  switch (value.type()) {
-    case Json::value_t::null:
-      return "null";
-    case Json::value_t::boolean:
-      return value.get<bool>() ? "true" : "false";
-    case Json::value_t::string: {
-      std::string text = value.get<std::string>();
-      if (text.size() > 40) {
-        text = text.substr(0, 40) + "...";
-      }
-      return "string \"" + text + "\"";
-    }
-    case Json::value_t::array:
-      return "an array of " + std::to_string(value.size()) + " values";
-    case Json::value_t::object:
-      return "an object";
-    case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned:
-    case Json::value_t::number_float:
-      return "number " + format_number(value.get<double>());
-    default:
-      return "a value of an unsupported kind";
-  }
-}
-
 std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
-}
-
-std::string at_index(const std::string& path, size_t index) {
-  std::string result = path;
-  result += '[';
-  result += std::to_string(index);
-  result += ']';
-  return result;
 }
 
 std::string list_of(std::initializer_list<const char*> names) {
@@ -103,7 +63,7 @@ class Reader {
   void object(const Json& value, const std::string& path,
               std::initializer_list<const char*> allowed) const {
     if (!value.is_object()) {
-      fail(path, "expected an object, got " + describe(value));
+      fail(path, "expected an object, got " + describe_json_value(value));
     }
     for (const auto& item : value.items()) {
       bool known = false;
@@ -132,7 +92,7 @@ class Reader {
 
   double number(const Json& value, const std::string& path) const {
     if (!value.is_number()) {
-      fail(path, "expected a finite number, got " + describe(value));
+      fail(path, "expected a finite number, got " + describe_json_value(value));
     }
     return value.get<double>();
   }
@@ -142,7 +102,7 @@ class Reader {
     const double x = number(value, path);
     if (strict ? !(x > minimum) : !(x >= minimum)) {
       fail(path, std::string("expected a number ") + (strict ? "> " : ">= ") +
-                     format_number(minimum) + ", got " + format_number(x));
+                     format_json_number(minimum) + ", got " + format_json_number(x));
     }
     return x;
   }
@@ -160,11 +120,11 @@ class Reader {
     const std::string expected =
         "an integer in " + std::to_string(minimum) + ".." + std::to_string(maximum);
     if (!value.is_number_integer()) {
-      fail(path, "expected " + expected + ", got " + describe(value));
+      fail(path, "expected " + expected + ", got " + describe_json_value(value));
     }
     const auto n = value.get<long long>();
     if (n < minimum || n > maximum) {
-      fail(path, "expected " + expected + ", got " + describe(value));
+      fail(path, "expected " + expected + ", got " + describe_json_value(value));
     }
     return static_cast<int>(n);
   }
@@ -179,7 +139,7 @@ class Reader {
   void boolean_key(const Json& object, const std::string& path, const char* key, bool& b) const {
     if (const Json* value = find(object, key)) {
       if (!value->is_boolean()) {
-        fail(join(path, key), "expected true or false, got " + describe(*value));
+        fail(join(path, key), "expected true or false, got " + describe_json_value(*value));
       }
       b = value->get<bool>();
     }
@@ -187,7 +147,7 @@ class Reader {
 
   std::string string(const Json& value, const std::string& path) const {
     if (!value.is_string()) {
-      fail(path, "expected a string, got " + describe(value));
+      fail(path, "expected a string, got " + describe_json_value(value));
     }
     return value.get<std::string>();
   }
@@ -200,18 +160,18 @@ class Reader {
         return text;
       }
     }
-    fail(path, "expected one of " + list_of(options) + ", got " + describe(value));
+    fail(path, "expected one of " + list_of(options) + ", got " + describe_json_value(value));
   }
 
   template <int N>
   Eigen::Matrix<double, N, 1> vector(const Json& value, const std::string& path,
                                      const char* what) const {
     if (!value.is_array() || value.size() != N) {
-      fail(path, std::string("expected ") + what + ", got " + describe(value));
+      fail(path, std::string("expected ") + what + ", got " + describe_json_value(value));
     }
     Eigen::Matrix<double, N, 1> v;
     for (int i = 0; i < N; ++i) {
-      v(i) = number(value[static_cast<size_t>(i)], at_index(path, static_cast<size_t>(i)));
+      v(i) = number(value[static_cast<size_t>(i)], json_index_path(path, static_cast<size_t>(i)));
     }
     return v;
   }
@@ -223,18 +183,18 @@ class Reader {
   // A material parameter: [u] (curves) or [u, v]
   Eigen::Vector2d parameter(const Json& value, const std::string& path) const {
     if (!value.is_array() || value.empty() || value.size() > 2) {
-      fail(path, "expected a material parameter [u] or [u, v], got " + describe(value));
+      fail(path, "expected a material parameter [u] or [u, v], got " + describe_json_value(value));
     }
     Eigen::Vector2d u = Eigen::Vector2d::Zero();
     for (size_t i = 0; i < value.size(); ++i) {
-      u(static_cast<int>(i)) = number(value[i], at_index(path, i));
+      u(static_cast<int>(i)) = number(value[i], json_index_path(path, i));
     }
     return u;
   }
 
   const Json& array(const Json& value, const std::string& path, const std::string& of) const {
     if (!value.is_array()) {
-      fail(path, "expected an array of " + of + ", got " + describe(value));
+      fail(path, "expected an array of " + of + ", got " + describe_json_value(value));
     }
     return value;
   }
@@ -243,7 +203,7 @@ class Reader {
     array(value, path, "indices");
     std::vector<int> result;
     for (size_t i = 0; i < value.size(); ++i) {
-      result.push_back(integer(value[i], at_index(path, i), 0, 1 << 30));
+      result.push_back(integer(value[i], json_index_path(path, i), 0, 1 << 30));
     }
     return result;
   }
@@ -254,14 +214,14 @@ class Reader {
     const Json& list = array(require(object, path, "times", "an array of keyframe times"),
                              times_path, "keyframe times");
     if (list.size() < 2) {
-      fail(times_path, "expected at least 2 keyframe times, got " + describe(list));
+      fail(times_path, "expected at least 2 keyframe times, got " + describe_json_value(list));
     }
     for (size_t i = 0; i < list.size(); ++i) {
-      times.push_back(number(list[i], at_index(times_path, i)));
+      times.push_back(number(list[i], json_index_path(times_path, i)));
       if (i > 0 && !(times[i] > times[i - 1])) {
-        fail(at_index(times_path, i), "expected strictly increasing keyframe times, got " +
-                                          format_number(times[i]) + " after " +
-                                          format_number(times[i - 1]));
+        fail(json_index_path(times_path, i), "expected strictly increasing keyframe times, got " +
+                                                 format_json_number(times[i]) + " after " +
+                                                 format_json_number(times[i - 1]));
       }
     }
     if (value_count != times.size()) {
@@ -279,14 +239,14 @@ class Reader {
     }
     if (!value.is_object()) {
       fail(path, "expected [x, y, z] or {\"times\": [...], \"values\": [[x, y, z], ...]}, got " +
-                     describe(value));
+                     describe_json_value(value));
     }
     object(value, path, {"times", "values"});
     const std::string values_path = join(path, "values");
     const Json& values = array(require(value, path, "values", "an array of [x, y, z] values"),
                                values_path, "[x, y, z] values");
     for (size_t i = 0; i < values.size(); ++i) {
-      schedule.values.push_back(point(values[i], at_index(values_path, i)));
+      schedule.values.push_back(point(values[i], json_index_path(values_path, i)));
     }
     times(value, path, schedule.times, values.size());
     return schedule;
@@ -299,15 +259,15 @@ class Reader {
       return schedule;
     }
     if (!value.is_object()) {
-      fail(path,
-           "expected a number or {\"times\": [...], \"values\": [...]}, got " + describe(value));
+      fail(path, "expected a number or {\"times\": [...], \"values\": [...]}, got " +
+                     describe_json_value(value));
     }
     object(value, path, {"times", "values"});
     const std::string values_path = join(path, "values");
     const Json& values =
         array(require(value, path, "values", "an array of numbers"), values_path, "numbers");
     for (size_t i = 0; i < values.size(); ++i) {
-      schedule.values.push_back(number(values[i], at_index(values_path, i)));
+      schedule.values.push_back(number(values[i], json_index_path(values_path, i)));
     }
     times(value, path, schedule.times, values.size());
     return schedule;
@@ -337,7 +297,7 @@ class ModelNames {
     if (!value.is_number_integer() || value.get<long long>() < 0 ||
         value.get<long long>() >= count) {
       reader.fail(path, "expected a model index in 0.." + std::to_string(count - 1) +
-                            " or a model name, got " + describe(value));
+                            " or a model name, got " + describe_json_value(value));
     }
     return value.get<int>();
   }
@@ -367,8 +327,8 @@ ShapeType read_shape(const Reader& reader, const Json& model, const std::string&
   try {
     if (inline_shape != nullptr) {
       if (!inline_shape->is_object()) {
-        reader.fail(join(path, "shape"),
-                    std::string("expected a ") + type + " object, got " + describe(*inline_shape));
+        reader.fail(join(path, "shape"), std::string("expected a ") + type + " object, got " +
+                                             describe_json_value(*inline_shape));
       }
       shape = parse_shape_json(inline_shape->dump(), kMarker);
     } else {
@@ -418,10 +378,10 @@ SceneGrid read_grid(const Reader& reader, const Json& model, const std::string& 
   const std::string nodes_path = join(grid_path, "nodes");
   const Json& nodes = reader.require(grid, grid_path, "nodes", "[nodes_u, nodes_v]");
   if (!nodes.is_array() || nodes.size() != 2) {
-    reader.fail(nodes_path, "expected [nodes_u, nodes_v], got " + describe(nodes));
+    reader.fail(nodes_path, "expected [nodes_u, nodes_v], got " + describe_json_value(nodes));
   }
-  result.nodes_u = reader.integer(nodes[0], at_index(nodes_path, 0), 3, 4096);
-  result.nodes_v = reader.integer(nodes[1], at_index(nodes_path, 1), 3, 4096);
+  result.nodes_u = reader.integer(nodes[0], json_index_path(nodes_path, 0), 3, 4096);
+  result.nodes_v = reader.integer(nodes[1], json_index_path(nodes_path, 1), 3, 4096);
   result.spacing = reader.bounded(reader.require(grid, grid_path, "spacing", "a spacing > 0"),
                                   join(grid_path, "spacing"), 0.0, true);
   if (const Json* origin = reader.find(grid, "origin")) {
@@ -438,11 +398,13 @@ SceneGrid read_grid(const Reader& reader, const Json& model, const std::string& 
 
 Eigen::Matrix2d read_tensor(const Reader& reader, const Json& value, const std::string& path) {
   if (!value.is_array() || value.size() != 2) {
-    reader.fail(path, "expected a 2 x 2 matrix [[m11, m12], [m21, m22]], got " + describe(value));
+    reader.fail(path, "expected a 2 x 2 matrix [[m11, m12], [m21, m22]], got " +
+                          describe_json_value(value));
   }
   Eigen::Matrix2d m;
   for (size_t r = 0; r < 2; ++r) {
-    const Eigen::Vector2d row = reader.vector<2>(value[r], at_index(path, r), "a row [m1, m2]");
+    const Eigen::Vector2d row =
+        reader.vector<2>(value[r], json_index_path(path, r), "a row [m1, m2]");
     m.row(static_cast<int>(r)) = row.transpose();
   }
   return m;
@@ -451,7 +413,7 @@ Eigen::Matrix2d read_tensor(const Reader& reader, const Json& value, const std::
 SceneModel read_model(const Reader& reader, const Json& value, const std::string& path,
                       size_t index) {
   if (!value.is_object()) {
-    reader.fail(path, "expected a model object, got " + describe(value));
+    reader.fail(path, "expected a model object, got " + describe_json_value(value));
   }
   SceneModel model;
   const std::string type =
@@ -543,7 +505,7 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
           reader.number_key(*shape, shape_path, kShapeKeys[k], x, 0.1, false);
           if (x > 4.0) {
             reader.fail(join(shape_path, kShapeKeys[k]),
-                        "expected a squareness in 0.1..4, got " + format_number(x));
+                        "expected a squareness in 0.1..4, got " + format_json_number(x));
           }
         } else {
           reader.number_key(*shape, shape_path, kShapeKeys[k], x);
@@ -559,7 +521,7 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
       if (std::abs(spec.orientation.norm() - 1.0) > 1e-6) {
         reader.fail(join(path, "orientation"),
                     "expected a unit quaternion [w, x, y, z], got one of norm " +
-                        format_number(spec.orientation.norm()));
+                        format_json_number(spec.orientation.norm()));
       }
     }
     if (const Json* parts = reader.find(value, "parts")) {
@@ -568,10 +530,10 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
     if (const Json* cells = reader.find(value, "mesh_cells")) {
       const std::string cells_path = join(path, "mesh_cells");
       if (!cells->is_array() || cells->size() != 2) {
-        reader.fail(cells_path, "expected [cells_u, cells_v], got " + describe(*cells));
+        reader.fail(cells_path, "expected [cells_u, cells_v], got " + describe_json_value(*cells));
       }
-      spec.mesh_cells_u = reader.integer((*cells)[0], at_index(cells_path, 0), 2, 1024);
-      spec.mesh_cells_v = reader.integer((*cells)[1], at_index(cells_path, 1), 3, 1024);
+      spec.mesh_cells_u = reader.integer((*cells)[0], json_index_path(cells_path, 0), 2, 1024);
+      spec.mesh_cells_v = reader.integer((*cells)[1], json_index_path(cells_path, 1), 3, 1024);
     }
     reader.integer_key(value, path, "quadrature_points", spec.quadrature_points, 1, 16);
     reader.number_key(value, path, "regularization", spec.regularization, 0.0, false);
@@ -625,7 +587,7 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
       const std::string regions_path = join(path, "regions");
       reader.array(*regions, regions_path, "{\"centre\": [x, y, z], \"radius\": r} regions");
       for (size_t r = 0; r < regions->size(); ++r) {
-        const std::string region_path = at_index(regions_path, r);
+        const std::string region_path = json_index_path(regions_path, r);
         const Json& region = (*regions)[r];
         reader.object(region, region_path, {"centre", "radius"});
         spec.region_centres.push_back(
@@ -644,7 +606,7 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
     const Json& nodes = reader.array(reader.require(value, path, "nodes", "an array of [x, y, z]"),
                                      nodes_path, "[x, y, z] nodes");
     for (size_t i = 0; i < nodes.size(); ++i) {
-      spec.nodes.push_back(reader.point(nodes[i], at_index(nodes_path, i)));
+      spec.nodes.push_back(reader.point(nodes[i], json_index_path(nodes_path, i)));
     }
     reader.boolean_key(value, path, "closed", spec.closed);
     const size_t minimum = spec.closed ? 4 : 3;
@@ -695,8 +657,8 @@ void read_window(const Reader& reader, const Json& value, const std::string& pat
   if (const Json* e = reader.find(value, "end")) {
     end = reader.number(*e, join(path, "end"));
     if (!(end > start)) {
-      reader.fail(join(path, "end"), "expected an end time > start (" + format_number(start) +
-                                         "), got " + format_number(end));
+      reader.fail(join(path, "end"), "expected an end time > start (" + format_json_number(start) +
+                                         "), got " + format_json_number(end));
     }
   }
 }
@@ -704,7 +666,7 @@ void read_window(const Reader& reader, const Json& value, const std::string& pat
 SceneForce read_force(const Reader& reader, const ModelNames& names, const Json& value,
                       const std::string& path) {
   if (!value.is_object()) {
-    reader.fail(path, "expected a force object, got " + describe(value));
+    reader.fail(path, "expected a force object, got " + describe_json_value(value));
   }
   SceneForce force;
   const std::string type =
@@ -767,7 +729,7 @@ SceneForce read_force(const Reader& reader, const ModelNames& names, const Json&
 SceneConstraint read_constraint(const Reader& reader, const ModelNames& names, const Json& value,
                                 const std::string& path) {
   if (!value.is_object()) {
-    reader.fail(path, "expected a constraint object, got " + describe(value));
+    reader.fail(path, "expected a constraint object, got " + describe_json_value(value));
   }
   SceneConstraint constraint;
   const std::string type =
@@ -782,11 +744,11 @@ SceneConstraint read_constraint(const Reader& reader, const ModelNames& names, c
     const std::string axis_path = join(path, key);
     const Json& pair = reader.require(value, path, key, "two material parameters [[u, v], [u, v]]");
     if (!pair.is_array() || pair.size() != 2) {
-      reader.fail(axis_path,
-                  "expected two material parameters [[u, v], [u, v]], got " + describe(pair));
+      reader.fail(axis_path, "expected two material parameters [[u, v], [u, v]], got " +
+                                 describe_json_value(pair));
     }
-    a0 = reader.parameter(pair[0], at_index(axis_path, 0));
-    a1 = reader.parameter(pair[1], at_index(axis_path, 1));
+    a0 = reader.parameter(pair[0], json_index_path(axis_path, 0));
+    a1 = reader.parameter(pair[1], json_index_path(axis_path, 1));
   };
   if (type == "point_target") {
     reader.object(value, path, {"type", "model", "at", "target", "alpha", "beta"});
@@ -863,10 +825,10 @@ Scene read_scene(const Reader& reader, const Json& root) {
     reader.fail("models", "expected at least one model, got an empty array");
   }
   for (size_t i = 0; i < models.size(); ++i) {
-    scene.models.push_back(read_model(reader, models[i], at_index("models", i), i));
+    scene.models.push_back(read_model(reader, models[i], json_index_path("models", i), i));
     for (size_t j = 0; j < i; ++j) {
       if (scene.models[j].name == scene.models[i].name) {
-        reader.fail(at_index("models", i) + ".name",
+        reader.fail(json_index_path("models", i) + ".name",
                     "expected a unique model name, got \"" + scene.models[i].name +
                         "\" again (models[" + std::to_string(j) + "])");
       }
@@ -876,14 +838,14 @@ Scene read_scene(const Reader& reader, const Json& root) {
   if (const Json* forces = reader.find(root, "forces")) {
     reader.array(*forces, "forces", "forces");
     for (size_t i = 0; i < forces->size(); ++i) {
-      scene.forces.push_back(read_force(reader, names, (*forces)[i], at_index("forces", i)));
+      scene.forces.push_back(read_force(reader, names, (*forces)[i], json_index_path("forces", i)));
     }
   }
   if (const Json* constraints = reader.find(root, "constraints")) {
     reader.array(*constraints, "constraints", "constraints");
     for (size_t i = 0; i < constraints->size(); ++i) {
       scene.constraints.push_back(
-          read_constraint(reader, names, (*constraints)[i], at_index("constraints", i)));
+          read_constraint(reader, names, (*constraints)[i], json_index_path("constraints", i)));
     }
   }
   if (const Json* integrator = reader.find(root, "integrator")) {
@@ -916,13 +878,13 @@ Scene read_scene(const Reader& reader, const Json& root) {
     scene.duration = reader.bounded(*duration, "run.duration", 0.0, true);
     if (scene.duration / scene.integrator.dt > 1e8) {
       reader.fail("run.duration", "expected at most 1e8 steps of integrator.dt, got " +
-                                      format_number(scene.duration / scene.integrator.dt));
+                                      format_json_number(scene.duration / scene.integrator.dt));
     }
   }
   if (const Json* probes = reader.find(root, "probes")) {
     reader.array(*probes, "probes", "probes");
     for (size_t i = 0; i < probes->size(); ++i) {
-      const std::string path = at_index("probes", i);
+      const std::string path = json_index_path("probes", i);
       const Json& probe = (*probes)[i];
       reader.object(probe, path, {"name", "model", "at"});
       SceneProbe p;
@@ -962,7 +924,7 @@ Scene read_scene(const Reader& reader, const Json& root) {
       if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos ||
           o.name.starts_with(".")) {
         reader.fail("output.name", "expected a file stem without slashes or a leading dot, got " +
-                                       describe(*name));
+                                       describe_json_value(*name));
       }
     }
     if (o.preview && o.format != "obj") {

@@ -11,49 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_write.h"
+#include "io/json_messages.h"
 #include "nurbs/error.h"
 
 namespace dnurbs {
 namespace {
 
 using Json = nlohmann::json;
-
-std::string format_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
-}
-
-// A short description of a JSON value for messages: `string "abc"`, `array of 2 values`, ...
-std::string describe(const Json& value) {
-  switch (value.type()) {
-    case Json::value_t::null:
-      return "null";
-    case Json::value_t::boolean:
-      return value.get<bool>() ? "true" : "false";
-    case Json::value_t::string: {
-      std::string text = value.get<std::string>();
-      if (text.size() > 40) {
-        text = text.substr(0, 40) + "...";
-      }
-      return "string \"" + text + "\"";
-    }
-    case Json::value_t::array:
-      return "an array of " + std::to_string(value.size()) + " values";
-    case Json::value_t::object:
-      return "an object";
-    case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned:
-    case Json::value_t::number_float:
-      return "number " + format_number(value.get<double>());
-    default:
-      return "a value of an unsupported kind";
-  }
-}
-
-std::string index_path(const std::string& path, size_t index) {
-  return path + "[" + std::to_string(index) + "]";
-}
 
 // Reads typed values out of a parsed document; every failure names the source and JSON path.
 class ShapeReader {
@@ -90,11 +54,11 @@ class ShapeReader {
     const std::string expected =
         "an integer in " + std::to_string(minimum) + ".." + std::to_string(maximum);
     if (!value.is_number_integer()) {
-      fail(path, "expected " + expected + ", got " + describe(value));
+      fail(path, "expected " + expected + ", got " + describe_json_value(value));
     }
     const auto number = value.get<long long>();
     if (number < minimum || number > maximum) {
-      fail(path, "expected " + expected + ", got " + describe(value));
+      fail(path, "expected " + expected + ", got " + describe_json_value(value));
     }
     return static_cast<int>(number);
   }
@@ -105,25 +69,25 @@ class ShapeReader {
       return false;
     }
     if (!found->is_boolean()) {
-      fail(key, "expected true or false, got " + describe(*found));
+      fail(key, "expected true or false, got " + describe_json_value(*found));
     }
     return found->get<bool>();
   }
 
   double finite_number(const Json& value, const std::string& path) const {
     if (!value.is_number()) {
-      fail(path, "expected a finite number, got " + describe(value));
+      fail(path, "expected a finite number, got " + describe_json_value(value));
     }
     const double number = value.get<double>();
     if (!std::isfinite(number)) {
-      fail(path, "expected a finite number, got " + format_number(number));
+      fail(path, "expected a finite number, got " + format_json_number(number));
     }
     return number;
   }
 
   const Json& array(const Json& value, const std::string& path, const std::string& of) const {
     if (!value.is_array()) {
-      fail(path, "expected an array of " + of + ", got " + describe(value));
+      fail(path, "expected an array of " + of + ", got " + describe_json_value(value));
     }
     return value;
   }
@@ -133,24 +97,24 @@ class ShapeReader {
     std::vector<double> result;
     result.reserve(value.size());
     for (size_t i = 0; i < value.size(); ++i) {
-      result.push_back(finite_number(value[i], index_path(path, i)));
+      result.push_back(finite_number(value[i], json_index_path(path, i)));
     }
     return result;
   }
 
   Eigen::Vector3d point(const Json& value, const std::string& path) const {
     if (!value.is_array() || value.size() != 3) {
-      fail(path, "expected a point [x, y, z], got " + describe(value));
+      fail(path, "expected a point [x, y, z], got " + describe_json_value(value));
     }
-    return {finite_number(value[0], index_path(path, 0)),
-            finite_number(value[1], index_path(path, 1)),
-            finite_number(value[2], index_path(path, 2))};
+    return {finite_number(value[0], json_index_path(path, 0)),
+            finite_number(value[1], json_index_path(path, 1)),
+            finite_number(value[2], json_index_path(path, 2))};
   }
 
   double weight(const Json& value, const std::string& path) const {
     const double w = finite_number(value, path);
     if (!(w > 0.0)) {
-      fail(path, "expected a weight > 0, got " + format_number(w));
+      fail(path, "expected a weight > 0, got " + format_json_number(w));
     }
     return w;
   }
@@ -197,7 +161,7 @@ class ShapeReader {
     Eigen::MatrixX3d control_points(n, 3);
     for (int i = 0; i < n; ++i) {
       control_points.row(i) = point(points[static_cast<size_t>(i)],
-                                    index_path("control_points", static_cast<size_t>(i)))
+                                    json_index_path("control_points", static_cast<size_t>(i)))
                                   .transpose();
     }
     Eigen::VectorXd weights = Eigen::VectorXd::Ones(n);
@@ -208,8 +172,8 @@ class ShapeReader {
                             std::to_string(found->size()));
       }
       for (int i = 0; i < n; ++i) {
-        weights(i) =
-            weight((*found)[static_cast<size_t>(i)], index_path("weights", static_cast<size_t>(i)));
+        weights(i) = weight((*found)[static_cast<size_t>(i)],
+                            json_index_path("weights", static_cast<size_t>(i)));
       }
     }
     try {
@@ -235,7 +199,7 @@ class ShapeReader {
     }
     Eigen::MatrixX3d control_points(m * n, 3);
     for (int i = 0; i < m; ++i) {
-      const std::string row_path = index_path("control_points", static_cast<size_t>(i));
+      const std::string row_path = json_index_path("control_points", static_cast<size_t>(i));
       const Json& row = array(rows[static_cast<size_t>(i)], row_path, "[x, y, z] points");
       if (static_cast<int>(row.size()) != n) {
         fail(row_path, "expected " + std::to_string(n) + " points along v " +
@@ -244,7 +208,7 @@ class ShapeReader {
       }
       for (int j = 0; j < n; ++j) {
         control_points.row(i * n + j) =
-            point(row[static_cast<size_t>(j)], index_path(row_path, static_cast<size_t>(j)))
+            point(row[static_cast<size_t>(j)], json_index_path(row_path, static_cast<size_t>(j)))
                 .transpose();
       }
     }
@@ -257,7 +221,7 @@ class ShapeReader {
                             std::to_string(found->size()));
       }
       for (int i = 0; i < m; ++i) {
-        const std::string row_path = index_path("weights", static_cast<size_t>(i));
+        const std::string row_path = json_index_path("weights", static_cast<size_t>(i));
         const Json& row = array((*found)[static_cast<size_t>(i)], row_path, "positive numbers");
         if (static_cast<int>(row.size()) != n) {
           fail(row_path, "expected " + std::to_string(n) +
@@ -265,8 +229,8 @@ class ShapeReader {
                              std::to_string(row.size()));
         }
         for (int j = 0; j < n; ++j) {
-          weights(i * n + j) =
-              weight(row[static_cast<size_t>(j)], index_path(row_path, static_cast<size_t>(j)));
+          weights(i * n + j) = weight(row[static_cast<size_t>(j)],
+                                      json_index_path(row_path, static_cast<size_t>(j)));
         }
       }
     }
@@ -279,7 +243,7 @@ class ShapeReader {
 
   Shape shape(const Json& root) const {
     if (!root.is_object()) {
-      fail("<root>", "expected a JSON object with a \"type\", got " + describe(root));
+      fail("<root>", "expected a JSON object with a \"type\", got " + describe_json_value(root));
     }
     const Json& type = require(root, "type", "\"nurbs_curve\" or \"nurbs_surface\"");
     if (type == "nurbs_curve") {
@@ -288,7 +252,7 @@ class ShapeReader {
     if (type == "nurbs_surface") {
       return surface(root);
     }
-    fail("type", "expected \"nurbs_curve\" or \"nurbs_surface\", got " + describe(type));
+    fail("type", "expected \"nurbs_curve\" or \"nurbs_surface\", got " + describe_json_value(type));
   }
 
  private:

@@ -12,7 +12,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
+#include "tests/tools/run_dnurbs.h"
 
 #include "io/mesh_import.h"
 #include "io/shape_file.h"
@@ -23,53 +25,15 @@ namespace {
 using ::testing::HasSubstr;
 using Json = nlohmann::json;
 
-const std::string kDnurbs = std::string(DNURBS_BINARY_DIR) + "/tools/dnurbs";
 const std::string kData = DNURBS_TEST_DATA_DIR;
 
-struct Result {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using Result = testing::CommandResult;
+using testing::fresh_directory;
+using testing::kDnurbs;
+using testing::read_text;
 
-std::filesystem::path fresh_directory(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() /
-                         ("dnurbs_test_tools_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(directory);
-  std::filesystem::create_directories(directory);
-  return directory;
-}
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs `dnurbs <arguments>` (arguments are passed to /bin/sh as written)
 Result run(const std::string& arguments) {
-  static int counter = 0;
-  const auto err_path =
-      std::filesystem::temp_directory_path() /
-      ("dnurbs_test_tools_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string command = kDnurbs + " " + arguments + " 2>" + err_path.string();
-  Result result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    ADD_FAILURE() << "cannot run " << command;
-    return result;
-  }
-  std::array<char, 4096> buffer{};
-  size_t read = 0;
-  while ((read = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.out.append(buffer.data(), read);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = read_text(err_path);
-  std::filesystem::remove(err_path);
-  return result;
+  return testing::run_dnurbs(arguments);
 }
 
 Eigen::Vector3d vector_of(const Json& value) {

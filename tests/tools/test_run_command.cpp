@@ -16,6 +16,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/tools/run_dnurbs.h"
+
 #include "io/checkpoint.h"
 #include "io/mesh_import.h"
 #include "io/shape_file.h"
@@ -25,56 +27,16 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kDnurbs = std::string(DNURBS_BINARY_DIR) + "/tools/dnurbs";
 const std::filesystem::path kData = DNURBS_TEST_DATA_DIR;
 const std::filesystem::path kExamples = kData / ".." / ".." / "examples" / "scenes";
 
-struct Result {
-  int exit_code = -1;
-  bool signalled = false;
-  std::string out;
-  std::string err;
-};
+using Result = testing::CommandResult;
+using testing::fresh_directory;
+using testing::kDnurbs;
+using testing::read_text;
 
-std::filesystem::path fresh_directory(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() /
-                         ("dnurbs_test_run_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(directory);
-  std::filesystem::create_directories(directory);
-  return directory;
-}
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs `dnurbs <arguments>` (through /bin/sh; stdout is a pipe, not a terminal)
 Result run(const std::string& arguments) {
-  static int counter = 0;
-  const auto err_path =
-      std::filesystem::temp_directory_path() /
-      ("dnurbs_test_run_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string command = kDnurbs + " " + arguments + " 2>" + err_path.string();
-  Result result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    ADD_FAILURE() << "cannot run " << command;
-    return result;
-  }
-  std::array<char, 4096> buffer{};
-  size_t read = 0;
-  while ((read = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.out.append(buffer.data(), read);
-  }
-  const int status = ::pclose(pipe);
-  result.signalled = WIFSIGNALED(status);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = read_text(err_path);
-  std::filesystem::remove(err_path);
-  return result;
+  return testing::run_dnurbs(arguments);
 }
 
 double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {

@@ -1,0 +1,19 @@
+#pragma once
+// Pieces of the error messages of the JSON readers (shape and scene files), so that both name
+// bad values and their JSON paths the same way.
+
+#include <cstddef>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace dnurbs {
+
+/// A double with 17 significant digits ("%.17g").
+std::string format_json_number(double value);
+/// A short description of a JSON value: `string "abc"`, `an array of 2 values`, `number 3`.
+std::string describe_json_value(const nlohmann::json& value);
+/// The JSON path of element `index` of the array at `path`: `path[index]`.
+std::string json_index_path(const std::string& path, std::size_t index);
+
+}  // namespace dnurbs
