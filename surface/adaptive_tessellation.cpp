@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <utility>
+#include <vector>
 
 #include "nurbs/error.h"
 
@@ -101,6 +102,93 @@ SurfaceError mesh_surface_error(const RestrictedMesh& mesh, int sample_order) {
   }
   total.mean = area > 0.0 ? integral / area : 0.0;
   return total;
+}
+
+UniformTessellationChoice coarsest_uniform_tessellation(const ParametricSurface& surface,
+                                                        int base_cells_u, int base_cells_v,
+                                                        double max_error, int sample_order) {
+  if (!(max_error > 0.0)) {
+    throw make_error("uniform tessellation: max_error ", max_error, " is not positive");
+  }
+  check_sample_order(sample_order);
+  const int largest_scale =
+      RestrictedMesh::kMaxBaseCells / std::max({base_cells_u, base_cells_v, 1});
+  auto evaluate = [&](int scale) {
+    const RestrictedMesh mesh(surface, scale * base_cells_u, scale * base_cells_v);
+    UniformTessellationChoice choice;
+    choice.cells_u = scale * base_cells_u;
+    choice.cells_v = scale * base_cells_v;
+    choice.vertices = mesh.to_triangle_mesh().vertex_count();
+    choice.error = mesh_surface_error(mesh, sample_order);
+    return choice;
+  };
+  int high = 1;
+  UniformTessellationChoice best = evaluate(high);
+  while (best.error.max > max_error) {
+    if (high == largest_scale) {
+      throw make_error("uniform tessellation: error ", best.error.max, " above max_error ",
+                       max_error, " at ", best.cells_u, " x ", best.cells_v, " cells");
+    }
+    high = std::min(2 * high, largest_scale);
+    best = evaluate(high);
+  }
+  int low = high / 2;  // fails the bound (or 0)
+  while (high - low > 1) {
+    const int middle = (low + high) / 2;
+    const UniformTessellationChoice trial = evaluate(middle);
+    if (trial.error.max <= max_error) {
+      high = middle;
+      best = trial;
+    } else {
+      low = middle;
+    }
+  }
+  return best;
+}
+
+RestrictedMesh refine_to_surface_error_from_best_base(const ParametricSurface& surface,
+                                                      double max_error, int base_cells_u,
+                                                      int base_cells_v, int max_level,
+                                                      int sample_order) {
+  constexpr double kSelectionCoarsening = 16.0;  // four levels up (see the header)
+  const RefinementTest final_test = surface_error_criterion(
+      surface, max_error, std::numeric_limits<double>::infinity(), sample_order);
+  const RefinementTest selection_test =
+      surface_error_criterion(surface, kSelectionCoarsening * max_error,
+                              std::numeric_limits<double>::infinity(), sample_order);
+  const ParameterDomain& domain = surface.domain();
+  auto cells = [](int base, double factor, bool periodic) {
+    const int count = static_cast<int>(std::lround(base * factor));
+    return std::clamp(count, periodic ? 3 : 1, RestrictedMesh::kMaxBaseCells);
+  };
+  // The given base first (validated by RestrictedMesh, with its messages)
+  std::pair<int, int> best_base{base_cells_u, base_cells_v};
+  int best_vertices = 0;
+  std::vector<std::pair<int, int>> tried;
+  for (int k = 0; k <= 3; ++k) {
+    for (int l = -2; l <= 2; ++l) {
+      const double scale = std::exp2(k / 4.0);
+      const std::pair<int, int> base =
+          tried.empty() ? best_base
+                        : std::pair<int, int>{
+                              cells(base_cells_u, scale, domain.periodic_u),
+                              cells(base_cells_v, scale * std::exp2(l / 4.0), domain.periodic_v)};
+      if (std::find(tried.begin(), tried.end(), base) != tried.end()) {
+        continue;
+      }
+      tried.push_back(base);
+      RestrictedMesh candidate(surface, base.first, base.second);
+      candidate.refine(selection_test, max_level);
+      const int vertices = candidate.to_triangle_mesh().vertex_count();
+      if (tried.size() == 1 || vertices < best_vertices) {
+        best_base = base;
+        best_vertices = vertices;
+      }
+    }
+  }
+  RestrictedMesh best(surface, best_base.first, best_base.second);
+  best.refine(final_test, max_level);
+  return best;
 }
 
 TriangleMesh tessellate_adaptive(const ParametricSurface& surface,

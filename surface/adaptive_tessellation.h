@@ -52,6 +52,37 @@ RefinementTest surface_error_criterion(const ParametricSurface& surface, double 
 /// the (u, v)-area weighted mean of their means, each triangle sampled at `sample_order`.
 SurfaceError mesh_surface_error(const RestrictedMesh& mesh, int sample_order);
 
+/// The coarsest uniform mesh of (scale base_cells_u) by (scale base_cells_v) cells, scale >= 1,
+/// whose sampled max error (mesh_surface_error at sample_order) is within max_error: the
+/// reference that adaptive tessellation is measured against.
+struct UniformTessellationChoice {
+  int cells_u = 0;
+  int cells_v = 0;
+  int vertices = 0;  ///< of the output mesh (poles merged)
+  SurfaceError error;
+};
+
+/// Finds the scale by doubling, then bisection (the error falls with the scale for the smooth
+/// surfaces this is meant for). Throws Error unless max_error > 0, or if the bound is not met
+/// below RestrictedMesh::kMaxBaseCells cells.
+UniformTessellationChoice coarsest_uniform_tessellation(
+    const ParametricSurface& surface, int base_cells_u, int base_cells_v, double max_error,
+    int sample_order = kDefaultErrorSampleOrder);
+
+/// Error-based adaptive refinement (surface_error_criterion(surface, max_error)) from the base
+/// grid that needs the fewest vertices. Bisection halves a triangle's area per level, so a mesh
+/// refined from one base meets an error bound with up to twice the vertices it needs (the bound
+/// falls between two levels), and the base cells' aspect ratio decides which edges are split
+/// first. The candidates are the base grids of round(base_cells_u s) by round(base_cells_v s r)
+/// cells, s = 2^(k/4) (k = 0..3) and r = 2^(l/4) (l = -2..2), at least 3 cells along a periodic
+/// direction. The error is O(h^2) and h halves every two levels, so the bound 16 max_error
+/// sits at the same place between levels four levels up: each candidate is refined to that
+/// bound (about 1/16 of the work), and the one with the fewest output vertices (ties: the
+/// first) is refined to max_error. Throws Error as surface_error_criterion and RestrictedMesh.
+RestrictedMesh refine_to_surface_error_from_best_base(
+    const ParametricSurface& surface, double max_error, int base_cells_u, int base_cells_v,
+    int max_level = RestrictedMesh::kDefaultMaxLevel, int sample_order = kDefaultErrorSampleOrder);
+
 /// Refines the base mesh of base_cells_u by base_cells_v cells (RestrictedMesh) by the test,
 /// to at most `max_level` bisections, and returns the mesh with poles merged
 /// (RestrictedMesh::to_triangle_mesh).

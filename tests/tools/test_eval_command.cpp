@@ -3,10 +3,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -173,14 +175,17 @@ TEST(RunCommand, DefaultDemoWritesObjAndPng) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.out, HasSubstr("demo.obj"));
   EXPECT_THAT(result.out, HasSubstr("demo.png"));
-  // The OBJ holds the hat (open: 25 x 25 vertices) and the periodic torus (24 x 12, no seams)
+  // The OBJ holds the hat (open: 25 x 25 vertices), the periodic torus (24 x 12, no seams) and
+  // the superquadric pendulum's link and bob
   const std::vector<TriangleMesh> meshes = import_meshes(directory / "demo.obj");
-  ASSERT_EQ(meshes.size(), 2u);
+  ASSERT_EQ(meshes.size(), 4u);
   EXPECT_EQ(meshes[0].name, "hat");
   EXPECT_EQ(meshes[0].triangle_count(), 2 * 24 * 24);
   EXPECT_EQ(meshes[1].name, "torus");
   EXPECT_EQ(meshes[1].triangle_count(), 2 * 24 * 12);
   EXPECT_EQ(meshes[1].vertex_count(), 24 * 12);
+  EXPECT_EQ(meshes[2].name, "link");
+  EXPECT_EQ(meshes[3].name, "bob");
   // A PNG file: its signature and a non-trivial size
   const std::string png = read_text(directory / "demo.png");
   ASSERT_GT(png.size(), 1000u);
@@ -214,6 +219,59 @@ TEST(ExportCommand, ShapeFileBecomesAMeshInTheFormatOfTheExtension) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_THAT(bad.err, HasSubstr("unknown mesh file extension \".xyz\""));
   EXPECT_EQ(run("export " + kData + "/circle.json").exit_code, 2);
+  std::filesystem::remove_all(directory);
+}
+
+// The number after `label` in `text` (e.g. "adaptive (...): 123 vertices": label ": ")
+double number_after(const std::string& text, const std::string& label) {
+  const size_t at = text.find(label);
+  EXPECT_NE(at, std::string::npos) << label << " not in " << text;
+  return at == std::string::npos ? 0.0 : std::stod(text.substr(at + label.size()));
+}
+
+TEST(ExportCommand, AdaptiveMeshMeetsTheBoundWithFewerVerticesThanUniformAndIsClosed) {
+  const auto directory = fresh_directory("export_adaptive");
+  const double bound = 1e-3;
+  const Result result = run("export " + kData + "/torus_periodic.json " +
+                            (directory / "torus.obj").string() + " --max-error 0.001 --compare");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const double adaptive_vertices = number_after(result.out, "criterion): ");
+  const double uniform_vertices = number_after(result.out, "cells, ");
+  EXPECT_LE(number_after(result.out, "sampled max error "), bound);
+  EXPECT_LT(adaptive_vertices, uniform_vertices) << result.out;
+  const std::vector<TriangleMesh> torus = import_meshes(directory / "torus.obj");
+  ASSERT_EQ(torus.size(), 1u);
+  EXPECT_EQ(torus[0].vertex_count(), adaptive_vertices);
+  // Closed and crack-free: every undirected edge in exactly two triangles
+  std::map<std::pair<int, int>, int> edges;
+  for (int f = 0; f < torus[0].triangle_count(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = torus[0].triangles(f, k);
+      const int b = torus[0].triangles(f, (k + 1) % 3);
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  for (const auto& [edge, count] : edges) {
+    EXPECT_EQ(count, 2) << edge.first << "-" << edge.second;
+  }
+  const Result angle = run("export " + kData + "/torus_periodic.json " +
+                           (directory / "normals.obj").string() + " --max-angle 10");
+  EXPECT_EQ(angle.exit_code, 0) << angle.err;
+  EXPECT_THAT(angle.out, HasSubstr("normals criterion"));
+  // Bad combinations and values: exit 2 naming the option
+  const std::string surface_export =
+      "export " + kData + "/torus_periodic.json " + (directory / "x.obj").string();
+  EXPECT_EQ(run(surface_export + " --max-error 0").exit_code, 2);
+  EXPECT_EQ(run(surface_export + " --max-error nan").exit_code, 2);
+  EXPECT_EQ(run(surface_export + " --max-angle 200").exit_code, 2);
+  const Result both = run(surface_export + " --max-error 0.01 --resolution 8");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_THAT(both.err, HasSubstr("exclude each other"));
+  EXPECT_EQ(run(surface_export + " --compare").exit_code, 2);
+  const Result curve = run("export " + kData + "/circle.json " + (directory / "c.obj").string() +
+                           " --max-error 0.01");
+  EXPECT_EQ(curve.exit_code, 2);
+  EXPECT_THAT(curve.err, HasSubstr("is a curve"));
   std::filesystem::remove_all(directory);
 }
 
