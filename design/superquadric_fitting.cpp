@@ -42,12 +42,54 @@ Eigen::Vector3d vector_from_rotation(const Eigen::Matrix3d& rotation) {
   return angle_axis.angle() * angle_axis.axis();
 }
 
-// Radial distance of body-frame point p (undo bend, then taper; z unchanged by both).
+// Partial derivatives of the body-frame radial distance: with respect to the body point p, the
+// sizes (A1, A2, A3) and the exponents e1, e2, tapers t1, t2 and bend amplitude b1.
+struct BodyDistanceGradient {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  double e1 = 0.0;
+  double e2 = 0.0;
+  double t1 = 0.0;
+  double t2 = 0.0;
+  double b1 = 0.0;
+};
+
+// g^n = (|e| / A)^n of the inside-outside function with its partial derivatives
+// d/de = n g / e, d/dA = -n g / A and d/dn = g ln(|e| / A) (all 0 where e = 0 and g = 0).
+struct PowerTerm {
+  double value = 0.0;
+  double d_coordinate = 0.0;
+  double d_size = 0.0;
+  double d_power = 0.0;
+};
+
+PowerTerm power_term(double coordinate, double size, double power) {
+  PowerTerm term;
+  if (coordinate == 0.0) {
+    return term;
+  }
+  const double ratio = std::abs(coordinate) / size;
+  term.value = std::pow(ratio, power);
+  term.d_coordinate = power * term.value / coordinate;
+  term.d_size = -power * term.value / size;
+  term.d_power = term.value * std::log(ratio);
+  return term;
+}
+
+// Radial distance of body-frame point p (undo bend, then taper; z unchanged by both) and, if
+// `gradient` is not null, its partial derivatives by reverse-mode differentiation of the steps
+// below (zero on the guarded branches, where the distance is a constant).
 double body_radial_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& size, double e1,
-                            double e2, double t1, double t2, double b1, double b2, double b3) {
+                            double e2, double t1, double t2, double b1, double b2, double b3,
+                            BodyDistanceGradient* gradient = nullptr) {
+  if (gradient != nullptr) {
+    *gradient = BodyDistanceGradient{};
+  }
   const double h = size.z();
   const double z = p.z();
-  const double bent_x = p.x() - b1 * std::cos((z + b2) / h * std::numbers::pi * b3);
+  const double bend_rate = std::numbers::pi * b3 / h;
+  const double bend_angle = (z + b2) * bend_rate;
+  const double bent_x = p.x() - b1 * std::cos(bend_angle);
   const double f1 = t1 * z / h + 1.0;
   const double f2 = t2 * z / h + 1.0;
   // Where a taper factor vanishes the inverse does not exist: a large residual.
@@ -56,16 +98,74 @@ double body_radial_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& siz
     return big;
   }
   const Eigen::Vector3d e(bent_x / f1, p.y() / f2, z);
-  const double gx = std::pow(std::abs(e.x()) / size.x(), 2.0 / e2);
-  const double gy = std::pow(std::abs(e.y()) / size.y(), 2.0 / e2);
-  const double gz = std::pow(std::abs(e.z()) / size.z(), 2.0 / e1);
-  const double F = std::pow(gx + gy, e2 / e1) + gz;
+  const PowerTerm gx = power_term(e.x(), size.x(), 2.0 / e2);
+  const PowerTerm gy = power_term(e.y(), size.y(), 2.0 / e2);
+  const PowerTerm gz = power_term(e.z(), size.z(), 2.0 / e1);
+  const double sum_xy = gx.value + gy.value;
+  const double lateral = std::pow(sum_xy, e2 / e1);
+  const double F = lateral + gz.value;
   const double radius = e.norm();
   if (!(F > 0.0) || !std::isfinite(F)) {
     return F > 0.0 ? big : -size.minCoeff();
   }
-  const double d = radius * (1.0 - std::pow(F, -0.5 * e1));
-  return std::isfinite(d) ? d : big;
+  const double G = std::pow(F, -0.5 * e1);
+  const double d = radius * (1.0 - G);
+  if (!std::isfinite(d)) {
+    return big;
+  }
+  if (gradient == nullptr) {
+    return d;
+  }
+  // d = |e| (1 - G), G = F^(-e1/2), F = S^(e2/e1) + gz, S = gx + gy (the inside-outside
+  // function of the superellipsoid e of seed 001 eq 1.30, see the header); adjoints accumulate
+  // backwards.
+  BodyDistanceGradient& g = *gradient;
+  const double adjoint_radius = 1.0 - G;
+  const double adjoint_G = -radius;
+  const double adjoint_F = adjoint_G * (-0.5 * e1) * G / F;
+  g.e1 += adjoint_G * (-0.5 * std::log(F)) * G;
+  double adjoint_S = 0.0;
+  if (sum_xy > 0.0) {
+    adjoint_S = adjoint_F * (e2 / e1) * lateral / sum_xy;
+    const double log_S = std::log(sum_xy);
+    g.e1 += adjoint_F * lateral * log_S * (-e2 / (e1 * e1));
+    g.e2 += adjoint_F * lateral * log_S / e1;
+  }
+  const double adjoint_gz = adjoint_F;
+  // g(e, A, n) with n = 2/e2 or 2/e1: dn/de2 = -2/e2^2.
+  const double adjoint_ex = adjoint_S * gx.d_coordinate + adjoint_radius * e.x() / radius;
+  const double adjoint_ey = adjoint_S * gy.d_coordinate + adjoint_radius * e.y() / radius;
+  const double adjoint_ez = adjoint_gz * gz.d_coordinate + adjoint_radius * e.z() / radius;
+  g.size.x() += adjoint_S * gx.d_size;
+  g.size.y() += adjoint_S * gy.d_size;
+  g.size.z() += adjoint_gz * gz.d_size;
+  g.e2 += adjoint_S * (gx.d_power + gy.d_power) * (-2.0 / (e2 * e2));
+  g.e1 += adjoint_gz * gz.d_power * (-2.0 / (e1 * e1));
+  // e = (bent_x / f1, p_y / f2, z).
+  const double adjoint_bent_x = adjoint_ex / f1;
+  const double adjoint_f1 = -adjoint_ex * e.x() / f1;
+  const double adjoint_f2 = -adjoint_ey * e.y() / f2;
+  // f_i = t_i z / h + 1, bent_x = p_x - b1 cos((z + b2) pi b3 / h).
+  const double bend_slope = adjoint_bent_x * b1 * std::sin(bend_angle);
+  g.point.x() = adjoint_bent_x;
+  g.point.y() = adjoint_ey / f2;
+  g.point.z() = adjoint_ez + (adjoint_f1 * t1 + adjoint_f2 * t2) / h + bend_slope * bend_rate;
+  g.size.z() += -(adjoint_f1 * t1 + adjoint_f2 * t2) * z / (h * h) - bend_slope * bend_angle / h;
+  g.t1 = adjoint_f1 * z / h;
+  g.t2 = adjoint_f2 * z / h;
+  g.b1 = -adjoint_bent_x * std::cos(bend_angle);
+  return d;
+}
+
+// J_l(r) = I + (1 - cos t)/t^2 [r]x + (t - sin t)/t^3 [r]x^2 (t = |r|), the left Jacobian of the
+// rotation vector: d(exp([r]x) v) = -[exp([r]x) v]x J_l(r) dr. Series below t = 1e-4.
+Eigen::Matrix3d left_jacobian(const Eigen::Vector3d& r) {
+  const double t = r.norm();
+  Eigen::Matrix3d cross;
+  cross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  const double a = t < 1e-4 ? 0.5 - t * t / 24.0 : (1.0 - std::cos(t)) / (t * t);
+  const double b = t < 1e-4 ? 1.0 / 6.0 - t * t / 120.0 : (t - std::sin(t)) / (t * t * t);
+  return Eigen::Matrix3d::Identity() + a * cross + b * cross * cross;
 }
 
 struct Problem {
@@ -74,26 +174,68 @@ struct Problem {
   int evaluations = 0;
 };
 
-double objective(unsigned, const double* x, double*, void* data) {
-  auto& problem = *static_cast<Problem*>(data);
-  ++problem.evaluations;
-  // Same rotation for every point: evaluate it once.
+// (1/N) sum_k d_k^2 and its gradient (if `gradient` is not null) over the variables.
+double mean_squared_distance(const Problem& problem, const double* x, double* gradient) {
   const Eigen::Vector3d c(x[kCentre], x[kCentre + 1], x[kCentre + 2]);
-  const Eigen::Matrix3d R =
-      rotation_from_vector(Eigen::Vector3d(x[kRotation], x[kRotation + 1], x[kRotation + 2]));
+  const Eigen::Vector3d r(x[kRotation], x[kRotation + 1], x[kRotation + 2]);
+  // Same rotation for every point: evaluate it once.
+  const Eigen::Matrix3d R = rotation_from_vector(r);
   const Eigen::Vector3d size(x[kSize], x[kSize + 1], x[kSize + 2]);
-  double sum = 0.0;
-  for (Eigen::Index k = 0; k < problem.points->rows(); ++k) {
-    const Eigen::Vector3d p = R.transpose() * (problem.points->row(k).transpose() - c);
-    const double d =
-        body_radial_distance(p, size, x[kE1], x[kE2], x[kT1], x[kT2], x[kB1],
-                             problem.settings->bend_offset, problem.settings->bend_frequency);
-    sum += d * d;
+  const SuperquadricFitSettings& s = *problem.settings;
+  Eigen::Map<Eigen::Matrix<double, kVariableCount, 1>> total(gradient);
+  if (gradient != nullptr) {
+    total.setZero();
   }
-  return sum / static_cast<double>(problem.points->rows());
+  // p = R^T (x - c) = exp(-[r]x) (x - c): dp/dc = -R^T and dp/dr = R^T [x - c]x J_l(r).
+  const Eigen::Matrix3d rotation_jacobian =
+      gradient != nullptr ? left_jacobian(r) : Eigen::Matrix3d();
+  const double n = static_cast<double>(problem.points->rows());
+  double sum = 0.0;
+  BodyDistanceGradient local;
+  for (Eigen::Index k = 0; k < problem.points->rows(); ++k) {
+    const Eigen::Vector3d v = problem.points->row(k).transpose() - c;
+    const Eigen::Vector3d p = R.transpose() * v;
+    const double d =
+        body_radial_distance(p, size, x[kE1], x[kE2], x[kT1], x[kT2], x[kB1], s.bend_offset,
+                             s.bend_frequency, gradient != nullptr ? &local : nullptr);
+    sum += d * d;
+    if (gradient != nullptr) {
+      const double weight = 2.0 * d / n;
+      const Eigen::Vector3d world = R * local.point;
+      total.segment<3>(kCentre) -= weight * world;
+      total.segment<3>(kRotation) += weight * rotation_jacobian.transpose() * world.cross(v);
+      total.segment<3>(kSize) += weight * local.size;
+      total[kE1] += weight * local.e1;
+      total[kE2] += weight * local.e2;
+      total[kT1] += weight * local.t1;
+      total[kT2] += weight * local.t2;
+      total[kB1] += weight * local.b1;
+    }
+  }
+  return sum / n;
 }
 
-// One BOBYQA run from x (updated in place); returns the objective.
+void check_settings(const SuperquadricFitSettings& settings) {
+  if (settings.max_evaluations <= 0 || settings.start_evaluations <= 0 ||
+      !(settings.minimum_exponent > 0.0) ||
+      !(settings.maximum_exponent > settings.minimum_exponent) ||
+      !(settings.maximum_taper > 0.0 && settings.maximum_taper < 1.0) ||
+      !std::isfinite(settings.bend_offset) || !std::isfinite(settings.bend_frequency) ||
+      !(settings.variable_tolerance >= 0.0)) {
+    throw make_error("bad superquadric fit settings (max_evaluations ", settings.max_evaluations,
+                     ", exponents [", settings.minimum_exponent, ", ", settings.maximum_exponent,
+                     "], maximum_taper ", settings.maximum_taper, ", bend b2 ",
+                     settings.bend_offset, " b3 ", settings.bend_frequency, ")");
+  }
+}
+
+double objective(unsigned, const double* x, double* gradient, void* data) {
+  auto& problem = *static_cast<Problem*>(data);
+  ++problem.evaluations;
+  return mean_squared_distance(problem, x, gradient);
+}
+
+// One bounded run from x (updated in place); returns the objective.
 double run(Problem& problem, std::vector<double>& x, double scale, int max_evaluations,
            double tolerance, int& status) {
   const SuperquadricFitSettings& s = *problem.settings;
@@ -116,17 +258,20 @@ double run(Problem& problem, std::vector<double>& x, double scale, int max_evalu
     auto& value = x[static_cast<size_t>(i)];
     value = std::clamp(value, lower[static_cast<size_t>(i)], upper[static_cast<size_t>(i)]);
   }
-  std::vector<double> step(kVariableCount, 0.05 * scale);
-  for (int i = kRotation; i < kRotation + 3; ++i) {
-    step[static_cast<size_t>(i)] = 0.1;
-  }
-  for (const int i : {kE1, kE2, kT1, kT2}) {
-    step[static_cast<size_t>(i)] = 0.05;
-  }
-  nlopt::opt optimizer(nlopt::LN_BOBYQA, kVariableCount);
+  const bool derivative_free = s.algorithm == SuperquadricFitAlgorithm::kBobyqa;
+  nlopt::opt optimizer(derivative_free ? nlopt::LN_BOBYQA : nlopt::LD_LBFGS, kVariableCount);
   optimizer.set_lower_bounds(lower);
   optimizer.set_upper_bounds(upper);
-  optimizer.set_initial_step(step);
+  if (derivative_free) {
+    std::vector<double> step(kVariableCount, 0.05 * scale);
+    for (int i = kRotation; i < kRotation + 3; ++i) {
+      step[static_cast<size_t>(i)] = 0.1;
+    }
+    for (const int i : {kE1, kE2, kT1, kT2}) {
+      step[static_cast<size_t>(i)] = 0.05;
+    }
+    optimizer.set_initial_step(step);
+  }
   optimizer.set_min_objective(objective, &problem);
   optimizer.set_xtol_rel(tolerance);
   optimizer.set_maxeval(max_evaluations);
@@ -135,10 +280,10 @@ double run(Problem& problem, std::vector<double>& x, double scale, int max_evalu
     status = static_cast<int>(optimizer.optimize(x, value));
   } catch (const nlopt::roundoff_limited&) {
     status = static_cast<int>(nlopt::ROUNDOFF_LIMITED);
-    value = objective(kVariableCount, x.data(), nullptr, &problem);
+    value = mean_squared_distance(problem, x.data(), nullptr);
   } catch (const std::runtime_error&) {
     status = static_cast<int>(nlopt::FAILURE);
-    value = objective(kVariableCount, x.data(), nullptr, &problem);
+    value = mean_squared_distance(problem, x.data(), nullptr);
   }
   return value;
 }
@@ -160,6 +305,25 @@ double superquadric_radial_distance(const SuperquadricShapeParameters& shape,
                               shape[P::kBendFrequency]);
 }
 
+double superquadric_fit_objective(const Eigen::MatrixX3d& points,
+                                  const SuperquadricFitSettings& settings,
+                                  const Eigen::VectorXd& variables, Eigen::VectorXd* gradient) {
+  check_points(points, "points to fit");
+  check_settings(settings);
+  if (variables.size() != kVariableCount) {
+    throw make_error("a superquadric fit has ", kVariableCount, " variables (got ",
+                     variables.size(), ")");
+  }
+  Problem problem;
+  problem.points = &points;
+  problem.settings = &settings;
+  if (gradient == nullptr) {
+    return mean_squared_distance(problem, variables.data(), nullptr);
+  }
+  gradient->resize(kVariableCount);
+  return mean_squared_distance(problem, variables.data(), gradient->data());
+}
+
 SuperquadricFitResult fit_superquadric(const Eigen::MatrixX3d& points,
                                        const SuperquadricFitSettings& settings) {
   check_points(points, "points to fit");
@@ -167,17 +331,7 @@ SuperquadricFitResult fit_superquadric(const Eigen::MatrixX3d& points,
     throw make_error("a superquadric fit needs at least ", kVariableCount - 2, " points (got ",
                      points.rows(), ")");
   }
-  if (settings.max_evaluations <= 0 || settings.start_evaluations <= 0 ||
-      !(settings.minimum_exponent > 0.0) ||
-      !(settings.maximum_exponent > settings.minimum_exponent) ||
-      !(settings.maximum_taper > 0.0 && settings.maximum_taper < 1.0) ||
-      !std::isfinite(settings.bend_offset) || !std::isfinite(settings.bend_frequency) ||
-      !(settings.variable_tolerance >= 0.0)) {
-    throw make_error("bad superquadric fit settings (max_evaluations ", settings.max_evaluations,
-                     ", exponents [", settings.minimum_exponent, ", ", settings.maximum_exponent,
-                     "], maximum_taper ", settings.maximum_taper, ", bend b2 ",
-                     settings.bend_offset, " b3 ", settings.bend_frequency, ")");
-  }
+  check_settings(settings);
 
   // Start: centroid and principal axes of the points.
   const Eigen::RowVector3d centroid = points.colwise().mean();

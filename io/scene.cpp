@@ -810,9 +810,9 @@ SceneConstraint read_constraint(const Reader& reader, const ModelNames& names, c
 }
 
 Scene read_scene(const Reader& reader, const Json& root) {
-  reader.object(
-      root, "",
-      {"description", "models", "forces", "constraints", "integrator", "run", "probes", "output"});
+  reader.object(root, "",
+                {"description", "models", "forces", "constraints", "integrator", "run", "probes",
+                 "output", "design"});
   Scene scene;
   scene.source = reader.source();
   scene.directory = reader.directory();
@@ -935,6 +935,21 @@ Scene read_scene(const Reader& reader, const Json& root) {
     if (o.preview && !o.final_mesh) {
       reader.fail("output.preview", "expected false when output.final_mesh is false");
     }
+  }
+  if (const Json* design = reader.find(root, "design")) {
+    const std::string path = "design";
+    reader.object(*design, path,
+                  {"algorithm", "variable_tolerance", "energy_tolerance", "constraint_tolerance",
+                   "max_evaluations", "max_seconds"});
+    SceneDesign& d = scene.design.emplace();
+    if (const Json* algorithm = reader.find(*design, "algorithm")) {
+      d.algorithm = reader.choice(*algorithm, "design.algorithm", {"slsqp", "auglag_lbfgs"});
+    }
+    reader.number_key(*design, path, "variable_tolerance", d.variable_tolerance, 0.0, false);
+    reader.number_key(*design, path, "energy_tolerance", d.energy_tolerance, 0.0, false);
+    reader.number_key(*design, path, "constraint_tolerance", d.constraint_tolerance, 0.0, false);
+    reader.integer_key(*design, path, "max_evaluations", d.max_evaluations, 1, 100000000);
+    reader.number_key(*design, path, "max_seconds", d.max_seconds, 0.0, false);
   }
   return scene;
 }
@@ -1212,6 +1227,15 @@ OrderedJson scene_json(const Scene& scene, bool with_output) {
                       {"name", o.name},
                       {"shape_files", o.shape_files}};
   }
+  if (scene.design) {
+    const SceneDesign& d = *scene.design;
+    root["design"] = {{"algorithm", d.algorithm},
+                      {"variable_tolerance", d.variable_tolerance},
+                      {"energy_tolerance", d.energy_tolerance},
+                      {"constraint_tolerance", d.constraint_tolerance},
+                      {"max_evaluations", d.max_evaluations},
+                      {"max_seconds", d.max_seconds}};
+  }
   return root;
 }
 
@@ -1270,7 +1294,8 @@ bool operator==(const SceneModel& a, const SceneModel& b) {
 bool operator==(const Scene& a, const Scene& b) {
   return a.description == b.description && a.models == b.models && a.forces == b.forces &&
          a.constraints == b.constraints && a.integrator == b.integrator && a.steps == b.steps &&
-         a.duration == b.duration && a.probes == b.probes && a.output == b.output;
+         a.duration == b.duration && a.probes == b.probes && a.output == b.output &&
+         a.design == b.design;
 }
 
 Scene parse_scene_json(const std::string& text, const std::string& source,

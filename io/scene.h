@@ -285,6 +285,19 @@ struct SceneOutput {
   bool operator==(const SceneOutput&) const = default;
 };
 
+/// Static design settings ("design", design/energy_minimization.h DesignSettings): `dnurbs design`
+/// minimises the models' elastic energy minus the work of the forces at time 0, subject to the
+/// constraints as equalities, instead of running the dynamics (`dnurbs run` ignores it).
+struct SceneDesign {
+  std::string algorithm = "slsqp";  ///< "slsqp" or "auglag_lbfgs"
+  double variable_tolerance = 1e-14;
+  double energy_tolerance = 0.0;
+  double constraint_tolerance = 1e-12;
+  int max_evaluations = 5000;
+  double max_seconds = 0.0;  ///< 0: no limit
+  bool operator==(const SceneDesign&) const = default;
+};
+
 struct Scene {
   std::string source = "<string>";  ///< file name (messages); not written
   std::filesystem::path directory;  ///< relative "shape_file"s resolve here; not written
@@ -297,6 +310,7 @@ struct Scene {
   double duration = 0.0;  ///< ... or in time ("run": {"duration": T}); exactly one is set
   std::vector<SceneProbe> probes;
   SceneOutput output;
+  std::optional<SceneDesign> design;  ///< present if the scene has a "design" section
   /// The number of steps to run: steps, or ceil(duration / dt - 1e-9).
   int step_count() const;
 };

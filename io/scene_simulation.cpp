@@ -536,6 +536,10 @@ std::vector<TriangleMesh> SceneSimulation::meshes(int resolution) const {
   return result;
 }
 
+void SceneSimulation::set_coordinates(const Eigen::VectorXd& q) {
+  system_.set_state(q, Eigen::VectorXd::Zero(system_.velocity_count()), system_.time());
+}
+
 std::optional<Shape> SceneSimulation::shape(int i) const {
   const Model& model = system_.model(i);
   const Eigen::VectorXd q = system_.coordinates(i);

@@ -78,6 +78,9 @@ class SceneSimulation {
   /// direction times the model's resolution_scale.
   std::vector<TriangleMesh> meshes(int resolution) const;
 
+  /// Sets the stacked coordinates (System order, e.g. a DesignResult's) with zero velocities at
+  /// the current time; throws Error if the size is wrong or a value is not finite.
+  void set_coordinates(const Eigen::VectorXd& q);
   /// Model i's current shape if it is a D-NURBS curve or surface.
   std::optional<Shape> shape(int i) const;
 

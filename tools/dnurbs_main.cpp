@@ -7,6 +7,7 @@
 
 #include "nurbs/error.h"
 #include "tools/command_line.h"
+#include "tools/design_command.h"
 #include "tools/eval_command.h"
 #include "tools/fit_command.h"
 #include "tools/info_command.h"
@@ -25,6 +26,7 @@ commands:
   export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
   fit superquadric|surface POINTS  fit a superquadric or a D-NURBS surface to points, as JSON
+  design SCENE.json [--out DIR]    energy-minimising static shape under forces and constraints
 
 Run `dnurbs COMMAND --help` for a command's options.
 exit codes: 0 ok, 1 bad input or failed processing, 2 bad command line
@@ -61,6 +63,9 @@ int main(int argc, char** argv) {
     }
     if (command == "fit") {
       return fit_command(rest, std::cout);
+    }
+    if (command == "design") {
+      return design_command(rest, std::cout);
     }
     if (command == "preview") {
       return preview_command(rest, program, std::cout);

@@ -2,13 +2,23 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
 
 #include <Eigen/Eigenvalues>
 
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "design/superquadric_fitting.h"
+#include "io/atomic_write.h"
+#include "io/mesh_export.h"
 #include "io/mesh_import.h"
+#include "io/shape_file.h"
+#include "nurbs/error.h"
+#include "surface/parametric_surface.h"
+#include "surface/parametric_surface_tessellation.h"
+#include "surface/tessellation.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {
@@ -17,10 +27,16 @@ const char* const kFitHelp = R"(usage: dnurbs fit superquadric|surface POINTS [o
 
 Fits a shape to points and prints it with its RMS and max error as JSON. POINTS is a text file
 of "x y z" lines (.xyz, .txt, .csv) or any mesh assimp reads (its vertices are the points).
+With --out DIR it also writes DIR/surface.json (a shape file, as `dnurbs eval` reads) or
+DIR/superquadric.json (the printed JSON), and DIR/<shape>.obj, the fitted shape tessellated.
 
-  superquadric        rigid pose, sizes, squareness, taper and bend (radial distance, BOBYQA)
+  superquadric        rigid pose, sizes, squareness, taper and bend (radial distance, LBFGS
+                      with the analytic gradient)
   surface             a D-NURBS surface over the points' principal plane, by least squares
                       plus smoothness with closest-point re-projection
+options:
+  --out DIR           write the fitted shape and its OBJ mesh into DIR
+  --resolution N      mesh segments per direction (default 32)
 options (surface):
   --degree P          degree in u and v (default 3)
   --spans N           knot spans in u and v (default 4)
@@ -39,7 +55,12 @@ Eigen::MatrixX3d read_points(const std::filesystem::path& path) {
   if (extension == ".xyz" || extension == ".txt" || extension == ".csv") {
     return load_points(path);
   }
-  return mesh_vertices(import_meshes(path));
+  const std::vector<TriangleMesh> meshes = import_meshes(path);
+  try {
+    return mesh_vertices(meshes);
+  } catch (const Error& error) {
+    throw make_error(path.string(), ": ", error.what());
+  }
 }
 
 void print_vector(std::ostream& out, const Eigen::VectorXd& values) {
@@ -50,21 +71,41 @@ void print_vector(std::ostream& out, const Eigen::VectorXd& values) {
   out << "]";
 }
 
-int fit_superquadric_command(const Eigen::MatrixX3d& points, std::ostream& out) {
+// Where --out writes, and the mesh resolution.
+struct FitOutput {
+  std::optional<std::filesystem::path> directory;
+  int resolution = 32;
+};
+
+int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& output,
+                             std::ostream& out) {
   const SuperquadricFitResult fit = fit_superquadric(points);
-  out << "{\n  \"shape\": \"superquadric\",\n  \"q_s\": ";
-  print_vector(out, fit.shape);
-  out << ",\n  \"centre\": ";
-  print_vector(out, fit.centre);
-  out << ",\n  \"rotation\": ";
-  print_vector(out, Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9));
-  out << ",\n  \"rms_error\": " << json_double(fit.rms_error)
-      << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
+  std::ostringstream text;
+  text << "{\n  \"shape\": \"superquadric\",\n  \"q_s\": ";
+  print_vector(text, fit.shape);
+  text << ",\n  \"centre\": ";
+  print_vector(text, fit.centre);
+  text << ",\n  \"rotation\": ";
+  print_vector(text, Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9));
+  text << ",\n  \"rms_error\": " << json_double(fit.rms_error)
+       << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
+  if (output.directory) {
+    std::filesystem::create_directories(*output.directory);
+    write_file_atomically(*output.directory / "superquadric.json", text.str());
+    // The body-frame surface moved to the fitted pose x = c + R s.
+    TriangleMesh mesh =
+        tessellate_surface(parametric_surface(DeformableSuperquadricShape(fit.shape)),
+                           output.resolution, 2 * output.resolution, "superquadric");
+    mesh.vertices = (mesh.vertices * fit.rotation.transpose()).rowwise() + fit.centre.transpose();
+    mesh.normals = mesh.normals * fit.rotation.transpose();
+    export_mesh(mesh, *output.directory / "superquadric.obj");
+  }
+  out << text.str();
   return kExitOk;
 }
 
 int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, double smoothness,
-                        int iterations, std::ostream& out) {
+                        int iterations, const FitOutput& output, std::ostream& out) {
   // A flat start over the principal plane of the points, covering their extent.
   const Eigen::RowVector3d centroid = points.colwise().mean();
   const Eigen::MatrixX3d centred = points.rowwise() - centroid;
@@ -98,6 +139,13 @@ int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, d
   settings.smoothness = smoothness;
   settings.max_iterations = iterations;
   const DNurbsFitResult fit = fit_dnurbs_surface(model, points, settings);
+  if (output.directory) {
+    const NurbsSurface surface = model.surface(fit.coordinates);
+    std::filesystem::create_directories(*output.directory);
+    write_shape_file(*output.directory / "surface.json", Shape(surface));
+    export_mesh(tessellate_surface(surface, output.resolution, output.resolution),
+                *output.directory / "surface.obj");
+  }
   out << "{\n  \"shape\": \"nurbs_surface\",\n  \"degree\": " << degree << ",\n  \"knots\": ";
   print_vector(out, Eigen::Map<const Eigen::VectorXd>(knots.knots().data(), knots.size()));
   out << ",\n  \"control_points\": ";
@@ -124,6 +172,7 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
   int spans = 4;
   double smoothness = 1e-6;
   int iterations = 30;
+  FitOutput output;
   for (size_t i = 2; i < arguments.size(); ++i) {
     const std::string& flag = arguments[i];
     if (flag == "--degree") {
@@ -132,6 +181,10 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
       spans = parse_int(flag_value(arguments, i), "--spans", 1, 1000);
     } else if (flag == "--smoothness") {
       smoothness = parse_double(flag_value(arguments, i), "--smoothness");
+    } else if (flag == "--out") {
+      output.directory = flag_value(arguments, i);
+    } else if (flag == "--resolution") {
+      output.resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
     } else if (flag == "--iterations") {
       iterations = parse_int(flag_value(arguments, i), "--iterations", 1, 100000);
     } else {
@@ -144,9 +197,9 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
   }
   const Eigen::MatrixX3d points = read_points(path);
   if (shape == "superquadric") {
-    return fit_superquadric_command(points, out);
+    return fit_superquadric_command(points, output, out);
   }
-  return fit_surface_command(points, degree, spans, smoothness, iterations, out);
+  return fit_surface_command(points, degree, spans, smoothness, iterations, output, out);
 }
 
 }  // namespace dnurbs::tools

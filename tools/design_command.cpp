@@ -1,0 +1,119 @@
+#include "tools/design_command.h"
+
+#include <filesystem>
+#include <optional>
+
+#include "design/energy_minimization.h"
+#include "io/mesh_export.h"
+#include "io/scene.h"
+#include "io/scene_simulation.h"
+#include "io/shape_file.h"
+#include "tools/command_line.h"
+
+namespace dnurbs::tools {
+
+const char* const kDesignHelp = R"(usage: dnurbs design SCENE.json [--out DIR] [options]
+
+Minimises the elastic energy of the scene's models minus the work of its forces (evaluated at
+time 0) subject to its constraints as equalities, with free weights bounded below by the
+minimum weight (NLopt). The scene file is the format of `dnurbs run` (docs/scene-format.md);
+its optional "design" section sets the algorithm and tolerances, the dynamics keys are ignored.
+Writes DIR/<model name>.json for every D-NURBS model (the shape file format of `dnurbs eval`)
+and DIR/<output.name>.obj (every model, output.resolution segments), and prints the
+iterations, final energy, constraint violation and NLopt status as JSON.
+
+options:
+  --out DIR               output directory (default: design_out)
+  --algorithm A           slsqp or auglag_lbfgs (overrides design.algorithm)
+  --max-evaluations N     overrides design.max_evaluations
+
+exit codes: 0 ok, 1 bad scene or NLopt failure, 2 bad command line
+)";
+
+namespace {
+
+DesignSettings design_settings(const SceneDesign& design) {
+  DesignSettings settings;
+  settings.algorithm = design.algorithm == "auglag_lbfgs"
+                           ? DesignAlgorithm::kAugmentedLagrangianLbfgs
+                           : DesignAlgorithm::kSlsqp;
+  settings.variable_tolerance = design.variable_tolerance;
+  settings.energy_tolerance = design.energy_tolerance;
+  settings.constraint_tolerance = design.constraint_tolerance;
+  settings.max_evaluations = design.max_evaluations;
+  settings.max_seconds = design.max_seconds;
+  return settings;
+}
+
+}  // namespace
+
+int design_command(const std::vector<std::string>& arguments, std::ostream& out) {
+  if (wants_help(arguments)) {
+    out << kDesignHelp;
+    return kExitOk;
+  }
+  if (arguments.empty()) {
+    throw UsageError("design needs a scene file");
+  }
+  const std::filesystem::path scene_path = arguments[0];
+  std::filesystem::path directory = "design_out";
+  std::optional<std::string> algorithm;
+  std::optional<int> max_evaluations;
+  for (size_t i = 1; i < arguments.size(); ++i) {
+    const std::string& flag = arguments[i];
+    if (flag == "--out") {
+      directory = flag_value(arguments, i);
+    } else if (flag == "--algorithm") {
+      algorithm = flag_value(arguments, i);
+      if (*algorithm != "slsqp" && *algorithm != "auglag_lbfgs") {
+        throw UsageError("unknown --algorithm '" + *algorithm + "' (slsqp or auglag_lbfgs)");
+      }
+    } else if (flag == "--max-evaluations") {
+      max_evaluations = parse_int(flag_value(arguments, i), "--max-evaluations", 1, 100000000);
+    } else {
+      throw UsageError("unknown design option '" + flag + "'");
+    }
+  }
+  Scene scene = read_scene_file(scene_path);
+  SceneDesign design = scene.design.value_or(SceneDesign{});
+  if (algorithm) {
+    design.algorithm = *algorithm;
+  }
+  if (max_evaluations) {
+    design.max_evaluations = *max_evaluations;
+  }
+  const int resolution = scene.output.resolution;
+  const std::string mesh_name = scene.output.name + ".obj";
+  SceneSimulation simulation(std::move(scene));
+  const DesignResult result =
+      minimize_energy(simulation.system(), &simulation.constraints(), design_settings(design));
+  simulation.set_coordinates(result.coordinates);
+
+  std::filesystem::create_directories(directory);
+  std::vector<std::filesystem::path> written;
+  for (int i = 0; i < simulation.system().model_count(); ++i) {
+    if (const std::optional<Shape> shape = simulation.shape(i)) {
+      const auto path =
+          directory / (simulation.scene().models[static_cast<size_t>(i)].name + ".json");
+      write_shape_file(path, *shape);
+      written.push_back(path);
+    }
+  }
+  const auto mesh_path = directory / mesh_name;
+  export_meshes(simulation.meshes(resolution), mesh_path);
+  written.push_back(mesh_path);
+
+  out << "{\n  \"algorithm\": " << json_string(design.algorithm)
+      << ",\n  \"iterations\": " << result.iterations
+      << ",\n  \"energy\": " << json_double(result.energy)
+      << ",\n  \"constraint_violation\": " << json_double(result.constraint_violation)
+      << ",\n  \"status\": " << result.status
+      << ",\n  \"status_name\": " << json_string(result.status_name) << ",\n  \"files\": [";
+  for (size_t i = 0; i < written.size(); ++i) {
+    out << (i > 0 ? ", " : "") << json_string(written[i].string());
+  }
+  out << "]\n}\n";
+  return result.converged() ? kExitOk : kExitError;
+}
+
+}  // namespace dnurbs::tools
