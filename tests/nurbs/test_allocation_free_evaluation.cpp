@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "nurbs/jacobian.h"
+#include "nurbs/span_cached_surface_evaluator.h"
 #include "sample_shapes.h"
 
 namespace {
@@ -42,6 +43,8 @@ TEST(Evaluation, PointsDerivativesAndJacobiansDoNotAllocate) {
   SurfaceJacobian surface_result;
   CurveDerivatives curve_derivatives;
   SurfaceDerivatives surface_derivatives;
+  const SpanCachedSurfaceEvaluator span_cached(surface);
+  SurfaceDerivatives span_cached_derivatives;
   double checksum = 0.0;
   const long before = allocation_count.load();
   for (int i = 0; i < 1000; ++i) {
@@ -50,9 +53,11 @@ TEST(Evaluation, PointsDerivativesAndJacobiansDoNotAllocate) {
     surface_jacobian(surface, u, 1.0 - u, 2, WeightMode::kFree, surface_result);
     curve.derivatives(u, 2, curve_derivatives);
     surface.derivatives(u, 1.0 - u, 2, surface_derivatives);
+    span_cached.derivatives(u, 1.0 - u, 2, span_cached_derivatives);
     checksum += curve.point(u).x() + surface.point(u, u).y() + curve_result.basis(2, 1) +
                 surface_result.weight_column[4](0, 3) + curve_derivatives(1, 0) +
-                surface_derivatives(1, 1).z();
+                surface_derivatives(1, 1).z() + span_cached_derivatives(0, 2).x() +
+                span_cached.point(u, u).z();
   }
   EXPECT_EQ(allocation_count.load() - before, 0);
   EXPECT_TRUE(std::isfinite(checksum));
