@@ -31,9 +31,10 @@ Every file is written to a temporary file and renamed, so a killed run leaves no
 
 Without SCENE.json runs the built-in default demo (examples/scenes/hat_demo.json): a flat
 D-NURBS sheet with a clamped border sculpted into a hat by springs pulling its centre up over
-time (damping, Newmark), and a D-NURBS torus inflated by a pressure pulse; it writes OBJ
-frames, log.csv, the final mesh demo.obj, its preview demo.png and the final shapes hat.json and
-torus.json.
+time (damping, Newmark), a D-NURBS torus inflated by a pressure pulse, and a superquadric
+pendulum (a link held at a pivot, a rounded cube hanging from it by a ball joint) swinging under
+gravity; it writes OBJ frames, log.csv (with the joints' max_violation), the final mesh demo.obj,
+its preview demo.png and the final shapes hat.json and torus.json.
 
 A step that diverges (a non-finite state or an energy above integrator.max_energy) stops the
 run: the last good state is written (checkpoint.json and the final mesh) and the exit code is 1.
@@ -53,7 +54,7 @@ exit codes: 0 ok, 1 bad scene, failed output or diverged run, 2 bad command line
 )";
 
 const char* const kDefaultSceneJson = R"json({
-  "description": "The default demo of `dnurbs run`: a flat D-NURBS sheet with a clamped border is sculpted into a hat by springs that pull its centre up over time (damping, Newmark), while a D-NURBS torus beside it is inflated by a pressure pulse.",
+  "description": "The default demo of `dnurbs run`: a flat D-NURBS sheet with a clamped border is sculpted into a hat by springs that pull its centre up over time (damping, Newmark), while a D-NURBS torus beside it is inflated by a pressure pulse and, on its other side, a superquadric pendulum (a slim link held at a pivot, a rounded cube hanging from it by a ball joint) swings under gravity.",
   "models": [
     {
       "name": "hat",
@@ -124,6 +125,34 @@ const char* const kDefaultSceneJson = R"json({
         "damping_density": 1.0
       },
       "resolution_scale": [1.0, 0.5]
+    },
+    {
+      "name": "link",
+      "type": "superquadric",
+      "shape": {"a1": 0.07, "a2": 0.07, "a3": 0.35},
+      "centre": [-2.5992482472771337, 0.0, 1.1132967844988528],
+      "orientation": [0.9537169507482269, 0, -0.3007057995042731, 0],
+      "parts": "rigid",
+      "mesh_cells": [4, 8],
+      "quadrature_points": 2,
+      "material": {
+        "mass_density": 1.0,
+        "damping_alpha": 0.2
+      }
+    },
+    {
+      "name": "bob",
+      "type": "superquadric",
+      "shape": {"a1": 0.22, "a2": 0.22, "a3": 0.22, "e1": 0.5, "e2": 0.5},
+      "centre": [-2.2723096785570376, 0.0, 0.6463801192541274],
+      "orientation": [0.9537169507482269, 0, -0.3007057995042731, 0],
+      "parts": "rigid",
+      "mesh_cells": [4, 8],
+      "quadrature_points": 2,
+      "material": {
+        "mass_density": 1.0,
+        "damping_alpha": 0.2
+      }
     }
   ],
   "forces": [
@@ -176,6 +205,32 @@ const char* const kDefaultSceneJson = R"json({
         "times": [0.0, 0.6, 1.2],
         "values": [0.0, 0.015, 0.0]
       }
+    }
+,
+    {
+      "type": "gravity",
+      "model": "link",
+      "acceleration": [0, 0, -9.81]
+    },
+    {
+      "type": "gravity",
+      "model": "bob",
+      "acceleration": [0, 0, -9.81]
+    }
+  ],
+  "constraints": [
+    {
+      "type": "point_target",
+      "model": "link",
+      "at": [1.5707963267948966, 0],
+      "target": [-2.8, 0.0, 1.4]
+    },
+    {
+      "type": "point_to_point",
+      "model_a": "link",
+      "at_a": [-1.5707963267948966, 0],
+      "model_b": "bob",
+      "at_b": [1.5707963267948966, 0]
     }
   ],
   "integrator": {

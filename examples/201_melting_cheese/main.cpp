@@ -2,6 +2,8 @@
 // variation or curving (eta = xi = 0), its border fixed, under gravity. With no internal force
 // the interior simply falls while the border holds: the deformation is all in the cells next to
 // the fixed nodes. Writes frame_NNN.obj into the directory given as the first argument.
+// Usage: example_201_melting_cheese [OUTPUT_DIRECTORY [FRAMES]] (default melting_cheese/, 61
+// frames).
 
 #include <cstdio>
 #include <filesystem>
@@ -11,13 +13,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "melting_cheese";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "melting_cheese");
+  const int frames = examples::count_argument(argc, argv, 61, "the number of frames");
 
   // A 16 by 16 slice of cheese on a 17 by 17 grid in grid units (h = 1).
   const Grid grid(17, 17, 1.0);
@@ -30,7 +33,7 @@ int main(int argc, char** argv) {
   System system(slice);
   system.add_force(0, gravity(Eigen::Vector3d(0, 0, -1e-4)));
   SemiImplicitStepper stepper;
-  for (int frame = 0; frame <= 60; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     const NodePositions r = slice.positions(system.coordinates(0));
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%03d.obj", frame);

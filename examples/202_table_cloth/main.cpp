@@ -1,6 +1,7 @@
 // A table cloth falling on a table (seed 000 figure 2): eta_ii = 0.001, eta_12 = 0.0006, xi = 0,
 // gravity, a box obstacle met by projection with friction. Prints the deepest penetration a step
 // produced before projection. Writes frame_NNN.obj (cloth and table) into argv[1].
+// Usage: example_202_table_cloth [OUTPUT_DIRECTORY [FRAMES]] (default table_cloth/, 61 frames).
 
 #include <cstdio>
 #include <filesystem>
@@ -10,13 +11,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "table_cloth";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "table_cloth");
+  const int frames = examples::count_argument(argc, argv, 61, "the number of frames");
 
   // A 16 by 16 cloth (grid units) one unit above an 8 by 8 table top at z = 0.
   const Grid grid(17, 17, 1.0);
@@ -40,7 +42,7 @@ int main(int argc, char** argv) {
   SemiImplicitStepper stepper;
   const std::vector<Eigen::Vector2d> points = grid.node_parameters();
   double deepest = 0.0;
-  for (int frame = 0; frame <= 60; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     const NodePositions r = cloth.positions(system.coordinates(0));
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%03d.obj", frame);

@@ -3,6 +3,8 @@
 // (spread over the 3 by 3 central nodes), with both
 // normal approximations side by side (classic at x < 0, christoffel at x > 0). Writes
 // frame_NNN.obj into argv[1].
+// Usage: example_203_cardboard_press [OUTPUT_DIRECTORY [FRAMES]] (default cardboard_press/, 49
+// frames).
 
 #include <cstdio>
 #include <filesystem>
@@ -11,13 +13,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "cardboard_press";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "cardboard_press");
+  const int frames = examples::count_argument(argc, argv, 49, "the number of frames");
 
   // A unit square of 17 by 17 nodes (h = 1/16).
   const Grid grid(17, 17, 1.0 / 16);
@@ -45,7 +48,7 @@ int main(int argc, char** argv) {
     }
   }
   SemiImplicitStepper stepper;
-  for (int frame = 0; frame <= 48; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     std::vector<TriangleMesh> meshes;
     for (int m = 0; m < 2; ++m) {
       const auto& sheet = dynamic_cast<const TerzopoulosSurface&>(system.model(m));

@@ -1,6 +1,8 @@
 // A rubber sheet with fixed border under gravity for increasing resistance to metric variation
 // (seed 000 figure 3: eta = 7e-7, 4e-6, 3e-5, 1e-2; xi = 0): the larger eta, the flatter the
 // sheet. Writes eta_K.obj (the settled sheet for the K-th eta) into argv[1] and prints the sag.
+// Usage: example_204_rubber_sheet [OUTPUT_DIRECTORY [STEPS]] (default rubber_sheet/, 4000 steps per
+// sheet).
 
 #include <cstdio>
 #include <filesystem>
@@ -9,13 +11,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "rubber_sheet";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "rubber_sheet");
+  const int steps = examples::count_argument(argc, argv, 4000, "the number of steps per sheet");
 
   const Grid grid(9, 9, 1.0);  // 8 by 8, grid units
   const double etas[] = {7e-7, 4e-6, 3e-5, 1e-2};
@@ -28,7 +31,7 @@ int main(int argc, char** argv) {
     System system(sheet);
     system.add_force(0, gravity(Eigen::Vector3d(0, 0, -1e-5)));
     SemiImplicitStepper stepper;
-    for (int s = 0; s < 4000; ++s) {  // t = 20000: settled
+    for (int s = 0; s < steps; ++s) {  // 4000 steps, t = 20000: settled
       stepper.step(system, 5.0);
     }
     const NodePositions r = sheet.positions(system.coordinates(0));

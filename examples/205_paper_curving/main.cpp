@@ -2,6 +2,8 @@
 // and 7): the classic normal with figure 5's xi (0, 8e-8, 3.6e-7, 7e-7) and the Christoffel
 // normal with figure 7's xi (0, 5e-6, 3e-5, 1e-4). With the Christoffel normal the paper stays
 // flatter as xi grows. Writes <normal>_K.obj into argv[1] and prints the maximum curvature.
+// Usage: example_205_paper_curving [OUTPUT_DIRECTORY [STEPS]] (default paper_curving/, 400 steps
+// per sheet).
 
 #include <cstdio>
 #include <filesystem>
@@ -10,13 +12,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "paper_curving";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "paper_curving");
+  const int steps = examples::count_argument(argc, argv, 400, "the number of steps per sheet");
 
   const Grid grid(17, 17, 1.0 / 16);  // a unit square
   const double figure5[] = {0.0, 8e-8, 3.6e-7, 7e-7};
@@ -41,7 +44,7 @@ int main(int argc, char** argv) {
         }
       }
       SemiImplicitStepper stepper;
-      for (int s = 0; s < 400; ++s) {
+      for (int s = 0; s < steps; ++s) {
         stepper.step(system, 0.005);
       }
       char name[40];

@@ -2,6 +2,8 @@
 // (eta = 1e-2) and curving (xi = 2e-6), Christoffel normal, lying on the ground under gravity; a
 // growing upward force at the middle lifts it. The ground is met by projection with friction.
 // Writes frame_NNN.obj into argv[1].
+// Usage: example_206_lifting_cardboard [OUTPUT_DIRECTORY [FRAMES]] (default lifting_cardboard/, 61
+// frames).
 
 #include <cstdio>
 #include <filesystem>
@@ -11,13 +13,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "lifting_cardboard";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "lifting_cardboard");
+  const int frames = examples::count_argument(argc, argv, 61, "the number of frames");
 
   const Grid grid(17, 17, 1.0 / 16);  // a unit square on the ground z = 0
   TerzopoulosMaterial cardboard;
@@ -43,7 +46,7 @@ int main(int argc, char** argv) {
   contact.friction = 0.3;
   const std::vector<Eigen::Vector2d> points = grid.node_parameters();
   SemiImplicitStepper stepper;
-  for (int frame = 0; frame <= 60; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%03d.obj", frame);
     export_mesh(grid_triangle_mesh(grid, sheet.positions(system.coordinates(0)), "cardboard"),

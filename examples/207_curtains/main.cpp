@@ -3,6 +3,7 @@
 // along the upper line draws each curtain toward its fixed first node. The upper nodes (the
 // hooks) slide on the rail and swing across it (their z is fixed). Writes frame_NNN.obj (both
 // curtains) into argv[1].
+// Usage: example_207_curtains [OUTPUT_DIRECTORY [FRAMES]] (default curtains/, 61 frames).
 
 #include <cmath>
 #include <cstdio>
@@ -14,13 +15,14 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "curtains";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "curtains");
+  const int frames = examples::count_argument(argc, argv, 61, "the number of frames");
 
   // 16 by 12 grid units, u along x on the rail, v downwards; pleated (y ripple of period 4).
   const Grid grid(17, 13, 1.0);
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
                      }));
   }
   SemiImplicitStepper stepper;
-  for (int frame = 0; frame <= 60; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     std::vector<TriangleMesh> meshes;
     for (int m = 0; m < 2; ++m) {
       const auto& curtain = dynamic_cast<const TerzopoulosSurface&>(system.model(m));

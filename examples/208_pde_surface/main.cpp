@@ -1,6 +1,7 @@
 // The dynamic PDE surface (seed 002 eq 8) with two pulsing forces, each simulating only its
 // deformation region (the rest of the grid is fixed and costs nothing), sub-stepped to 24 frames
 // per second. Writes frame_NNN.obj into argv[1].
+// Usage: example_208_pde_surface [OUTPUT_DIRECTORY [FRAMES]] (default pde_surface/, 49 frames).
 
 #include <cmath>
 #include <cstdio>
@@ -11,13 +12,14 @@
 #include "dynamics/integrator.h"
 #include "dynamics/pde_surface.h"
 #include "dynamics/system.h"
+#include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "pde_surface";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "pde_surface");
+  const int frames = examples::count_argument(argc, argv, 49, "the number of frames");
 
   const Grid grid(41, 41, 1.0 / 40);  // a unit square
   PdeSurfaceMaterial material;        // b = d = 1, c = 2: the biharmonic
@@ -37,7 +39,7 @@ int main(int argc, char** argv) {
                      }));
   }
   Integrator integrator(IntegratorSettings{IntegratorScheme::kNewmark});
-  for (int frame = 0; frame <= 48; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%03d.obj", frame);
     export_mesh(grid_triangle_mesh(grid, surface.positions(system.coordinates(0)), "pde"),

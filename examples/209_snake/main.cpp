@@ -1,6 +1,7 @@
 // A closed snake (seed 001 eqs 1.2-1.13) finding the edge of a bright disk in a synthetic
 // grey-scale image through the potential -|grad(G_sigma * I)|, stepped by eq 1.13 with one
 // factorization. Writes frame_NNN.obj (the contour as an OBJ polyline) into argv[1].
+// Usage: example_209_snake [OUTPUT_DIRECTORY [FRAMES]] (default snake/, 61 frames).
 
 #include <cmath>
 #include <cstdio>
@@ -11,11 +12,12 @@
 #include "dynamics/integrator.h"
 #include "dynamics/snake.h"
 #include "dynamics/system.h"
+#include "examples/example_arguments.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;
-  const std::filesystem::path out = argc > 1 ? argv[1] : "snake";
-  std::filesystem::create_directories(out);
+  const auto out = examples::output_directory(argc, argv, "snake");
+  const int frames = examples::count_argument(argc, argv, 61, "the number of frames");
 
   // A 96 by 96 image: an ellipse of semi-axes 30 and 20 pixels around (48, 48).
   Eigen::MatrixXd image = Eigen::MatrixXd::Zero(96, 96);
@@ -38,7 +40,7 @@ int main(int argc, char** argv) {
   System system(snake);
   system.add_force(0, potential_force(image_potential(image, 2.0, 20.0), 1e-3));
   Integrator integrator(IntegratorSettings{IntegratorScheme::kCentral});
-  for (int frame = 0; frame <= 60; ++frame) {
+  for (int frame = 0; frame < frames; ++frame) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%03d.obj", frame);
     std::ofstream obj(out / name);

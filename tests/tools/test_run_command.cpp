@@ -60,19 +60,25 @@ TEST(RunCommand, DefaultDemoWritesFramesLogFinalMeshPreviewAndShapes) {
         "frames/demo_000000.obj", "frames/demo_000200.obj"}) {
     EXPECT_TRUE(std::filesystem::exists(directory / file)) << file;
   }
-  // The final mesh holds the sculpted hat (6 x 6 cells) and the torus (6 x 3 cells, periodic)
+  // The final mesh holds the sculpted hat (6 x 6 cells), the torus (6 x 3 cells, periodic) and
+  // the superquadric pendulum's link and bob (6 x 6 cells each)
   const std::vector<TriangleMesh> meshes = import_meshes(directory / "demo.obj");
-  ASSERT_EQ(meshes.size(), 2u);
+  ASSERT_EQ(meshes.size(), 4u);
   EXPECT_EQ(meshes[0].name, "hat");
   EXPECT_EQ(meshes[0].triangle_count(), 2 * 6 * 6);
   EXPECT_EQ(meshes[1].name, "torus");
   EXPECT_EQ(meshes[1].triangle_count(), 2 * 6 * 3);
+  EXPECT_EQ(meshes[2].name, "link");
+  EXPECT_EQ(meshes[2].triangle_count(), 2 * 6 * 6);
+  EXPECT_EQ(meshes[3].name, "bob");
+  EXPECT_EQ(meshes[3].triangle_count(), 2 * 6 * 6);
   // The springs raised the crown: the highest vertex of the hat is well above the flat sheet
   EXPECT_GT(meshes[0].vertices.col(2).maxCoeff(), 0.5);
   // The log has the initial row and one per step, with the probe columns
   const std::string log = read_text(directory / "log.csv");
   EXPECT_THAT(log, ::testing::StartsWith("step,time,kinetic_energy,potential_energy,"
-                                         "total_energy,max_violation,crown_x"));
+                                         "total_energy,max_violation,violation_0,violation_1,"
+                                         "crown_x"));
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1 + 201);
   EXPECT_EQ(read_checkpoint_file(directory / "checkpoint.json").step, 200);
   EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "hat.json")));
@@ -174,7 +180,7 @@ TEST(RunCommand, KilledRunLeavesCompleteFilesAndResumes) {
   int frames = 0;
   for (const auto& entry : std::filesystem::directory_iterator(directory / "killed" / "frames")) {
     if (entry.path().extension() == ".obj") {
-      EXPECT_EQ(import_meshes(entry.path()).size(), 2u) << entry.path();
+      EXPECT_EQ(import_meshes(entry.path()).size(), 4u) << entry.path();
       ++frames;
     }
   }
