@@ -12,6 +12,7 @@
 
 #include "constraints/target_trajectory.h"
 #include "io/json_messages.h"
+#include "io/scene_fit.h"
 #include "nurbs/error.h"
 
 namespace dnurbs {
@@ -318,8 +319,9 @@ ShapeType read_shape(const Reader& reader, const Json& model, const std::string&
   const Json* inline_shape = reader.find(model, "shape");
   const Json* file = reader.find(model, "shape_file");
   if ((inline_shape == nullptr) == (file == nullptr)) {
-    reader.fail(join(path, "shape"), std::string("expected exactly one of \"shape\" (a ") + type +
-                                         " in the shape format of dnurbs eval) and \"shape_file\"");
+    reader.fail(join(path, "shape"),
+                std::string("expected exactly one of \"shape\" (a ") + type +
+                    " in the shape format of dnurbs eval), \"shape_file\" and \"fit\"");
   }
   std::optional<Shape> shape;
   // A marker source lets the shape parser's "<source>: <path>: ..." become one scene path
@@ -368,6 +370,75 @@ void read_dnurbs_settings(const Reader& reader, const Json& model, const std::st
   }
   reader.integer_key(model, path, "quadrature_points", settings.quadrature_points, 0, 32);
   reader.number_key(model, path, "minimum_weight", settings.minimum_weight, 0.0, true);
+}
+
+DNurbsSettings scene_dnurbs_settings(const SceneDNurbsSettings& s) {
+  DNurbsSettings settings;
+  settings.weight_mode = s.free_weights ? WeightMode::kFree : WeightMode::kFixed;
+  settings.quadrature_points = s.quadrature_points;
+  settings.minimum_weight = s.minimum_weight;
+  return settings;
+}
+
+// Reads the "fit" object of a model, if present: `dnurbs` selects the D-NURBS keys (degree,
+// spans, smoothness, iterations) or the superquadric ones (max_evaluations); `instead_of` are
+// the keys that give the shape the fit replaces.
+std::optional<SceneFit> read_fit(const Reader& reader, const Json& model, const std::string& path,
+                                 bool dnurbs, std::initializer_list<const char*> instead_of) {
+  const Json* value = reader.find(model, "fit");
+  if (value == nullptr) {
+    return std::nullopt;
+  }
+  const std::string fit_path = join(path, "fit");
+  for (const char* key : instead_of) {
+    if (reader.find(model, key) != nullptr) {
+      reader.fail(fit_path, std::string("expected either \"fit\" or \"") + key +
+                                "\", not both (the fit gives the initial shape)");
+    }
+  }
+  if (dnurbs) {
+    reader.object(*value, fit_path, {"points", "degree", "spans", "smoothness", "iterations"});
+  } else {
+    reader.object(*value, fit_path, {"points", "max_evaluations"});
+  }
+  SceneFit fit;
+  fit.points =
+      reader.string(reader.require(*value, fit_path, "points", "a file of points or a mesh"),
+                    join(fit_path, "points"));
+  reader.integer_key(*value, fit_path, "degree", fit.degree, 1, 9);
+  reader.integer_key(*value, fit_path, "spans", fit.spans, 1, 1000);
+  reader.number_key(*value, fit_path, "smoothness", fit.smoothness, 0.0, false);
+  reader.integer_key(*value, fit_path, "iterations", fit.iterations, 1, 100000);
+  reader.integer_key(*value, fit_path, "max_evaluations", fit.max_evaluations, 1, 100000000);
+  return fit;
+}
+
+// The points of a fit, the file resolved against the scene's directory (as "shape_file")
+Eigen::MatrixX3d fit_points(const Reader& reader, const std::string& path, const SceneFit& fit) {
+  std::filesystem::path file = fit.points;
+  if (file.is_relative()) {
+    file = reader.directory() / file;
+  }
+  try {
+    return read_fit_points(file);
+  } catch (const Error& error) {
+    reader.fail(join(join(path, "fit"), "points"), error.what());
+  }
+}
+
+// Runs a fit, failing with the model's "fit" path if the fitter throws (points errors name
+// "fit.points" already)
+template <typename Fit>
+auto fitted(const Reader& reader, const std::string& path, Fit fit) {
+  try {
+    return fit();
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    if (message.starts_with(reader.source() + ": ")) {
+      throw;
+    }
+    reader.fail(join(path, "fit"), message);
+  }
 }
 
 SceneGrid read_grid(const Reader& reader, const Json& model, const std::string& path) {
@@ -460,37 +531,79 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
   };
 
   if (type == "dnurbs_curve") {
-    model_keys({"shape", "shape_file", "weights", "quadrature_points", "minimum_weight"});
-    std::string file;
-    NurbsCurve curve = read_shape<NurbsCurve>(reader, value, path, file, "nurbs_curve");
-    SceneDNurbsCurve spec{std::move(curve), std::move(file), 1.0, 0.0, 0.0, 0.0, {}};
+    model_keys({"shape", "shape_file", "fit", "weights", "quadrature_points", "minimum_weight"});
+    double mass_density = 1.0;
+    double damping_density = 0.0;
+    double tension = 0.0;
+    double rigidity = 0.0;
     material_keys({"mass_density", "damping_density", "tension", "rigidity"});
-    non_negative("mass_density", spec.mass_density);
-    non_negative("damping_density", spec.damping_density);
-    non_negative("tension", spec.tension);
-    non_negative("rigidity", spec.rigidity);
-    read_dnurbs_settings(reader, value, path, spec.settings);
-    model.spec = std::move(spec);
-  } else if (type == "dnurbs_surface") {
-    model_keys({"shape", "shape_file", "weights", "quadrature_points", "minimum_weight"});
+    non_negative("mass_density", mass_density);
+    non_negative("damping_density", damping_density);
+    non_negative("tension", tension);
+    non_negative("rigidity", rigidity);
+    SceneDNurbsSettings settings;
+    read_dnurbs_settings(reader, value, path, settings);
     std::string file;
-    NurbsSurface surface = read_shape<NurbsSurface>(reader, value, path, file, "nurbs_surface");
-    SceneDNurbsSurface spec{
-        std::move(surface), std::move(file), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, {}};
+    std::optional<SceneFit> fit = read_fit(reader, value, path, true, {"shape", "shape_file"});
+    NurbsCurve curve =
+        fit ? fitted(reader, path,
+                     [&] {
+                       DNurbsCurveMaterial material;
+                       material.mass_density = mass_density;
+                       material.damping_density = damping_density;
+                       material.tension = tension;
+                       material.rigidity = rigidity;
+                       return fit_scene_curve(fit_points(reader, path, *fit), *fit, material,
+                                              scene_dnurbs_settings(settings));
+                     })
+            : read_shape<NurbsCurve>(reader, value, path, file, "nurbs_curve");
+    model.spec = SceneDNurbsCurve{std::move(curve), std::move(file), mass_density, damping_density,
+                                  tension,          rigidity,        settings,     std::move(fit)};
+  } else if (type == "dnurbs_surface") {
+    model_keys({"shape", "shape_file", "fit", "weights", "quadrature_points", "minimum_weight"});
+    double mass_density = 1.0;
+    double damping_density = 0.0;
+    Eigen::Matrix<double, 5, 1> stiffness = Eigen::Matrix<double, 5, 1>::Zero();
     material_keys({"mass_density", "damping_density", "a10", "a01", "b20", "b11", "b02"});
-    non_negative("mass_density", spec.mass_density);
-    non_negative("damping_density", spec.damping_density);
-    non_negative("a10", spec.a10);
-    non_negative("a01", spec.a01);
-    non_negative("b20", spec.b20);
-    non_negative("b11", spec.b11);
-    non_negative("b02", spec.b02);
-    read_dnurbs_settings(reader, value, path, spec.settings);
-    model.spec = std::move(spec);
+    non_negative("mass_density", mass_density);
+    non_negative("damping_density", damping_density);
+    non_negative("a10", stiffness(0));
+    non_negative("a01", stiffness(1));
+    non_negative("b20", stiffness(2));
+    non_negative("b11", stiffness(3));
+    non_negative("b02", stiffness(4));
+    SceneDNurbsSettings settings;
+    read_dnurbs_settings(reader, value, path, settings);
+    std::string file;
+    std::optional<SceneFit> fit = read_fit(reader, value, path, true, {"shape", "shape_file"});
+    NurbsSurface surface =
+        fit ? fitted(reader, path,
+                     [&] {
+                       DNurbsSurfaceMaterial fit_material;
+                       fit_material.mass_density = mass_density;
+                       fit_material.damping_density = damping_density;
+                       fit_material.a10 = stiffness(0);
+                       fit_material.a01 = stiffness(1);
+                       fit_material.b20 = stiffness(2);
+                       fit_material.b11 = stiffness(3);
+                       fit_material.b02 = stiffness(4);
+                       return fit_scene_surface(fit_points(reader, path, *fit), *fit, fit_material,
+                                                scene_dnurbs_settings(settings));
+                     })
+            : read_shape<NurbsSurface>(reader, value, path, file, "nurbs_surface");
+    model.spec =
+        SceneDNurbsSurface{std::move(surface), std::move(file), mass_density,  damping_density,
+                           stiffness(0),       stiffness(1),    stiffness(2),  stiffness(3),
+                           stiffness(4),       settings,        std::move(fit)};
   } else if (type == "superquadric") {
-    model_keys({"shape", "centre", "orientation", "parts", "mesh_cells", "quadrature_points",
+    model_keys({"shape", "centre", "orientation", "fit", "parts", "mesh_cells", "quadrature_points",
                 "regularization"});
     SceneSuperquadric spec;
+    spec.fit = read_fit(reader, value, path, false, {"shape", "centre", "orientation"});
+    if (spec.fit) {
+      fitted(reader, path,
+             [&] { fit_scene_superquadric(fit_points(reader, path, *spec.fit), *spec.fit, spec); });
+    }
     if (const Json* shape = reader.find(value, "shape")) {
       const std::string shape_path = join(path, "shape");
       reader.object(*shape, shape_path,
@@ -1005,9 +1118,27 @@ void write_dnurbs_settings(const SceneDNurbsSettings& s, OrderedJson& model) {
   model["minimum_weight"] = s.minimum_weight;
 }
 
+OrderedJson fit_json(const SceneFit& fit, bool dnurbs) {
+  OrderedJson j;
+  j["points"] = fit.points;
+  if (dnurbs) {
+    j["degree"] = fit.degree;
+    j["spans"] = fit.spans;
+    j["smoothness"] = fit.smoothness;
+    j["iterations"] = fit.iterations;
+  } else {
+    j["max_evaluations"] = fit.max_evaluations;
+  }
+  return j;
+}
+
+// "fit", "shape_file" or the inline "shape", whichever the model came from
 template <typename ShapeType>
-void write_shape(const ShapeType& shape, const std::string& file, OrderedJson& model) {
-  if (!file.empty()) {
+void write_shape(const ShapeType& shape, const std::string& file,
+                 const std::optional<SceneFit>& fit, OrderedJson& model) {
+  if (fit) {
+    model["fit"] = fit_json(*fit, true);
+  } else if (!file.empty()) {
     model["shape_file"] = file;
   } else {
     model["shape"] = OrderedJson::parse(shape_to_json(Shape(shape)));
@@ -1019,14 +1150,14 @@ OrderedJson model_json(const SceneModel& model) {
   j["name"] = model.name;
   j["type"] = scene_model_type(model);
   if (const auto* curve = std::get_if<SceneDNurbsCurve>(&model.spec)) {
-    write_shape(curve->curve, curve->shape_file, j);
+    write_shape(curve->curve, curve->shape_file, curve->fit, j);
     j["material"] = {{"mass_density", curve->mass_density},
                      {"damping_density", curve->damping_density},
                      {"tension", curve->tension},
                      {"rigidity", curve->rigidity}};
     write_dnurbs_settings(curve->settings, j);
   } else if (const auto* surface = std::get_if<SceneDNurbsSurface>(&model.spec)) {
-    write_shape(surface->surface, surface->shape_file, j);
+    write_shape(surface->surface, surface->shape_file, surface->fit, j);
     j["material"] = {{"mass_density", surface->mass_density},
                      {"damping_density", surface->damping_density},
                      {"a10", surface->a10},
@@ -1036,13 +1167,17 @@ OrderedJson model_json(const SceneModel& model) {
                      {"b02", surface->b02}};
     write_dnurbs_settings(surface->settings, j);
   } else if (const auto* sq = std::get_if<SceneSuperquadric>(&model.spec)) {
-    OrderedJson shape;
-    for (int k = 0; k < 14; ++k) {
-      shape[kShapeKeys[k]] = sq->shape(k);
+    if (sq->fit) {
+      j["fit"] = fit_json(*sq->fit, false);
+    } else {
+      OrderedJson shape;
+      for (int k = 0; k < 14; ++k) {
+        shape[kShapeKeys[k]] = sq->shape(k);
+      }
+      j["shape"] = shape;
+      j["centre"] = array_of<3>(sq->centre);
+      j["orientation"] = array_of<4>(sq->orientation);
     }
-    j["shape"] = shape;
-    j["centre"] = array_of<3>(sq->centre);
-    j["orientation"] = array_of<4>(sq->orientation);
     j["parts"] = sq->parts;
     j["mesh_cells"] = {sq->mesh_cells_u, sq->mesh_cells_v};
     j["quadrature_points"] = sq->quadrature_points;
@@ -1276,14 +1411,15 @@ bool operator==(const SceneDNurbsCurve& a, const SceneDNurbsCurve& b) {
   return shape_to_json(Shape(a.curve)) == shape_to_json(Shape(b.curve)) &&
          a.shape_file == b.shape_file && a.mass_density == b.mass_density &&
          a.damping_density == b.damping_density && a.tension == b.tension &&
-         a.rigidity == b.rigidity && a.settings == b.settings;
+         a.rigidity == b.rigidity && a.settings == b.settings && a.fit == b.fit;
 }
 
 bool operator==(const SceneDNurbsSurface& a, const SceneDNurbsSurface& b) {
   return shape_to_json(Shape(a.surface)) == shape_to_json(Shape(b.surface)) &&
          a.shape_file == b.shape_file && a.mass_density == b.mass_density &&
          a.damping_density == b.damping_density && a.a10 == b.a10 && a.a01 == b.a01 &&
-         a.b20 == b.b20 && a.b11 == b.b11 && a.b02 == b.b02 && a.settings == b.settings;
+         a.b20 == b.b20 && a.b11 == b.b11 && a.b02 == b.b02 && a.settings == b.settings &&
+         a.fit == b.fit;
 }
 
 bool operator==(const SceneModel& a, const SceneModel& b) {

@@ -59,6 +59,21 @@ struct SceneGrid {
   bool operator==(const SceneGrid&) const = default;
 };
 
+/// Fitting a model's initial shape to points instead of giving it ("fit"; io/scene_fit.h): the
+/// parser reads the points and fits, so the spec holds the fitted shape as if it were given.
+struct SceneFit {
+  std::string points;  ///< as written; a relative path resolves against Scene::directory
+  /// D-NURBS (a clamped uniform start over the points' principal axes, fit_dnurbs_curve or
+  /// fit_dnurbs_surface with the model's material as the smoothness energy):
+  int degree = 3;           ///< in each direction
+  int spans = 4;            ///< knot spans in each direction
+  double smoothness = 0.0;  ///< DNurbsFitSettings::smoothness
+  int iterations = 30;      ///< DNurbsFitSettings::max_iterations
+  /// Superquadric (fit_superquadric): SuperquadricFitSettings::max_evaluations.
+  int max_evaluations = 20000;
+  bool operator==(const SceneFit&) const = default;
+};
+
 /// Common D-NURBS settings (DNurbsSettings).
 struct SceneDNurbsSettings {
   bool free_weights = false;
@@ -75,6 +90,7 @@ struct SceneDNurbsCurve {
   double tension = 0.0;
   double rigidity = 0.0;
   SceneDNurbsSettings settings;
+  std::optional<SceneFit> fit;  ///< present if `curve` was fitted ("fit", written back so)
 };
 
 struct SceneDNurbsSurface {
@@ -88,6 +104,7 @@ struct SceneDNurbsSurface {
   double b11 = 0.0;
   double b02 = 0.0;
   SceneDNurbsSettings settings;
+  std::optional<SceneFit> fit;  ///< present if `surface` was fitted ("fit", written back so)
 };
 
 struct SceneSuperquadric {
@@ -107,6 +124,8 @@ struct SceneSuperquadric {
   int mesh_cells_v = 16;
   int quadrature_points = 3;
   double regularization = 1e-3;
+  /// Present if shape, centre and orientation were fitted ("fit", written back so).
+  std::optional<SceneFit> fit;
   bool operator==(const SceneSuperquadric&) const = default;
 };
 

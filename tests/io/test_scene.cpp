@@ -68,7 +68,11 @@ const char* const kFullScene = R"json({
     {"name": "snake", "type": "snake",
      "nodes": [[0, 0, 5], [1, 0, 5], [1, 1, 5], [0, 1, 5], [-0.5, 0.5, 5]], "closed": true,
      "material": {"mass_density": 2, "damping_density": 1, "tension": 0.5, "rigidity": 0.05},
-     "boundary": {"fixed_points": [0]}, "resolution_scale": [0.5, 1]}
+     "boundary": {"fixed_points": [0]}, "resolution_scale": [0.5, 1]},
+    {"name": "scan", "type": "dnurbs_surface",
+     "fit": {"points": "fit_surface_points.xyz", "degree": 2, "spans": 3, "smoothness": 1e-6,
+             "iterations": 5},
+     "material": {"b20": 1, "b11": 1, "b02": 1}}
   ],
   "forces": [
     {"type": "point", "model": "sheet", "at": [0.5, 0.5],
@@ -158,11 +162,14 @@ TEST(SceneFile, ChangingAnyValueMakesScenesDifferent) {
 
 TEST(SceneFile, ValuesAndReferencesAreParsedAsWritten) {
   const Scene scene = full_scene();
-  ASSERT_EQ(scene.models.size(), 6u);
+  ASSERT_EQ(scene.models.size(), 7u);
   EXPECT_EQ(scene_model_type(scene.models[0]), "dnurbs_curve");
   EXPECT_EQ(std::get<SceneDNurbsCurve>(scene.models[0].spec).shape_file, "circle.json");
   EXPECT_TRUE(std::get<SceneDNurbsCurve>(scene.models[0].spec).settings.free_weights);
   EXPECT_EQ(scene_model_type(scene.models[5]), "snake");
+  EXPECT_EQ(std::get<SceneDNurbsSurface>(scene.models[6].spec).fit->points,
+            "fit_surface_points.xyz");
+  EXPECT_EQ(std::get<SceneDNurbsSurface>(scene.models[6].spec).surface.degree_u(), 2);
   // Names resolve to indices
   EXPECT_EQ(std::get<ScenePointForce>(scene.forces[0].spec).model, 1);
   EXPECT_EQ(std::get<SceneSpringForce>(scene.forces[1].spec).model, 0);
@@ -206,7 +213,7 @@ TEST(SceneFile, SchedulesHoldConstantsAndInterpolateKeyframes) {
 TEST(SceneSimulation, EveryModelForceAndConstraintTypeBuildsAndSteps) {
   SceneSimulation simulation(full_scene());
   const System& system = simulation.system();
-  EXPECT_EQ(system.model_count(), 6);
+  EXPECT_EQ(system.model_count(), 7);
   // sheet (3 x 3, border clamped) + control point 4 fixed: all 27 coordinates fixed;
   // curve: control point 0 fixed (3 of its 4 coordinates) plus the weight gauge
   EXPECT_GT(system.fixed_coordinates().size(), 27u);
@@ -218,7 +225,7 @@ TEST(SceneSimulation, EveryModelForceAndConstraintTypeBuildsAndSteps) {
   EXPECT_EQ(simulation.steps_done(), 2);
   EXPECT_TRUE(system.coordinates().allFinite());
   const std::vector<TriangleMesh> meshes = simulation.meshes(6);
-  ASSERT_EQ(meshes.size(), 6u);
+  ASSERT_EQ(meshes.size(), 7u);
   EXPECT_EQ(meshes[1].name, "sheet");
   EXPECT_EQ(meshes[1].triangle_count(), 2 * 6 * 6);
   EXPECT_EQ(meshes[2].triangle_count(), 2 * 6 * 6);  // superquadric: 6 x 6 cells
@@ -227,7 +234,7 @@ TEST(SceneSimulation, EveryModelForceAndConstraintTypeBuildsAndSteps) {
   EXPECT_EQ(sample.probes.size(), 2u);
   EXPECT_EQ(sample.violations.size(), 8);
   EXPECT_EQ(simulation.log_columns().size(), simulation.log_row(sample).size());
-  EXPECT_EQ(simulation.cost().size(), 6u);
+  EXPECT_EQ(simulation.cost().size(), 7u);
   EXPECT_TRUE(simulation.shape(0).has_value());
   EXPECT_FALSE(simulation.shape(2).has_value());
 }

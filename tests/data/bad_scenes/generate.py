@@ -128,10 +128,26 @@ case("asymmetric_eta", f, "models[2]:")
 def f(s): s["models"][0]["material"]["a10"] = [1]
 case("material_not_a_number", f, "models[0].material.a10: expected a finite number, got an array of 1 values")
 
+def f(s): s["models"][0]["fit"] = {"points": "../fit_surface_points.xyz"}
+case("fit_and_shape", f, "models[0].fit: expected either \"fit\" or \"shape\", not both")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["fit"] = {"points": "does_not_exist.xyz"}
+case("fit_missing_points_file", f, "models[0].fit.points:", "does_not_exist.xyz")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["fit"] = {"points": "../fit_surface_points.xyz", "smoothness": -1}
+case("fit_negative_smoothness", f, "models[0].fit.smoothness: expected a number >= 0, got -1")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["fit"] = {"points": "../fit_surface_points.xyz", "knots": 4}
+case("fit_unknown_key", f, "models[0].fit.knots: unknown key")
+def f(s): s["models"].append({"type": "superquadric", "centre": [0, 0, 0], "fit": {"points": "../fit_superquadric_points.xyz"}})
+case("fit_superquadric_with_centre", f, "models[2].fit: expected either \"fit\" or \"centre\", not both")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["fit"] = {"points": "../fit_surface_points.xyz", "spans": 17}
+case("fit_too_few_points", f, "models[0].fit:")
+
 import sys
 out = os.path.dirname(os.path.abspath(__file__))
+# Hand-written cases (design_*.json) are kept with their lines of expected_messages.tsv
+handwritten = [line.rstrip("\n") for line in open(os.path.join(out, "expected_messages.tsv"))
+               if line.startswith("design_")]
 for f in os.listdir(out):
-    if f.endswith('.json') or f.endswith('.tsv'):
+    if (f.endswith('.json') and not f.startswith("design_")) or f.endswith('.tsv'):
         os.remove(os.path.join(out, f))
 lines = []
 for name, mutate, expected, raw in cases:
@@ -143,6 +159,7 @@ for name, mutate, expected, raw in cases:
         text = json.dumps(s, indent=1) + "\n"
     open(os.path.join(out, name + ".json"), "w").write(text)
     lines.append(name + ".json\t" + "\t".join(expected))
+lines += handwritten
 open(os.path.join(out, "expected_messages.tsv"), "w").write(
     "# file<TAB>substrings its error message must contain (tests/io/test_scene.cpp)\n" + "\n".join(lines) + "\n")
 print(len(cases))

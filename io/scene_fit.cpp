@@ -1,0 +1,139 @@
+#include "io/scene_fit.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "design/dnurbs_fitting.h"
+#include "design/point_set.h"
+#include "design/superquadric_fitting.h"
+#include "io/mesh_import.h"
+#include "nurbs/error.h"
+
+namespace dnurbs {
+
+namespace {
+
+// The centroid and principal axes of the points, largest spread first (columns).
+struct PrincipalFrame {
+  Eigen::RowVector3d centroid;
+  Eigen::Matrix3d axes;
+};
+
+PrincipalFrame principal_frame(const Eigen::MatrixX3d& points) {
+  check_points(points, "points to fit");
+  PrincipalFrame frame;
+  frame.centroid = points.colwise().mean();
+  const Eigen::MatrixX3d centred = points.rowwise() - frame.centroid;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
+  frame.axes = eigen.eigenvectors().rowwise().reverse();  // eigenvalues come increasing
+  return frame;
+}
+
+// The Greville abscissa of control point i: the mean of knots i + 1 .. i + degree.
+double greville(const KnotVector& knots, int degree, int i) {
+  double sum = 0.0;
+  for (int k = 1; k <= degree; ++k) {
+    sum += knots[i + k];
+  }
+  return sum / degree;
+}
+
+void check_start(int degree, int spans) {
+  if (degree < 1 || spans < 1) {
+    throw make_error("a fit needs degree >= 1 and spans >= 1, got degree ", degree, " and spans ",
+                     spans);
+  }
+}
+
+DNurbsFitSettings fit_settings(const SceneFit& fit) {
+  DNurbsFitSettings settings;
+  settings.smoothness = fit.smoothness;
+  settings.max_iterations = fit.iterations;
+  return settings;
+}
+
+}  // namespace
+
+Eigen::MatrixX3d read_fit_points(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".xyz" || extension == ".txt" || extension == ".csv") {
+    return load_points(path);
+  }
+  const std::vector<TriangleMesh> meshes = import_meshes(path);
+  try {
+    return mesh_vertices(meshes);
+  } catch (const Error& error) {
+    throw make_error(path.string(), ": ", error.what());
+  }
+}
+
+NurbsSurface principal_plane_surface(const Eigen::MatrixX3d& points, int degree, int spans) {
+  check_start(degree, spans);
+  const PrincipalFrame frame = principal_frame(points);
+  const Eigen::MatrixX3d centred = points.rowwise() - frame.centroid;
+  const Eigen::VectorXd along_u = centred * frame.axes.col(0);
+  const Eigen::VectorXd along_v = centred * frame.axes.col(1);
+  const KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
+  const int n = knots.control_point_count();
+  Eigen::MatrixX3d control(n * n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double x = along_u.minCoeff() +
+                       greville(knots, degree, i) * (along_u.maxCoeff() - along_u.minCoeff());
+      const double y = along_v.minCoeff() +
+                       greville(knots, degree, j) * (along_v.maxCoeff() - along_v.minCoeff());
+      control.row(i * n + j) =
+          frame.centroid + (x * frame.axes.col(0) + y * frame.axes.col(1)).transpose();
+    }
+  }
+  return NurbsSurface(knots, knots, control);
+}
+
+NurbsCurve principal_axis_curve(const Eigen::MatrixX3d& points, int degree, int spans) {
+  check_start(degree, spans);
+  const PrincipalFrame frame = principal_frame(points);
+  const Eigen::VectorXd along = (points.rowwise() - frame.centroid) * frame.axes.col(0);
+  const KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
+  const int n = knots.control_point_count();
+  Eigen::MatrixX3d control(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double x =
+        along.minCoeff() + greville(knots, degree, i) * (along.maxCoeff() - along.minCoeff());
+    control.row(i) = frame.centroid + x * frame.axes.col(0).transpose();
+  }
+  return NurbsCurve(knots, control);
+}
+
+NurbsCurve fit_scene_curve(const Eigen::MatrixX3d& points, const SceneFit& fit,
+                           const DNurbsCurveMaterial& material, const DNurbsSettings& settings) {
+  const DNurbsCurve model(principal_axis_curve(points, fit.degree, fit.spans), material, settings);
+  return model.curve(fit_dnurbs_curve(model, points, fit_settings(fit)).coordinates);
+}
+
+NurbsSurface fit_scene_surface(const Eigen::MatrixX3d& points, const SceneFit& fit,
+                               const DNurbsSurfaceMaterial& material,
+                               const DNurbsSettings& settings) {
+  const DNurbsSurface model(principal_plane_surface(points, fit.degree, fit.spans), material,
+                            settings);
+  return model.surface(fit_dnurbs_surface(model, points, fit_settings(fit)).coordinates);
+}
+
+void fit_scene_superquadric(const Eigen::MatrixX3d& points, const SceneFit& fit,
+                            SceneSuperquadric& spec) {
+  SuperquadricFitSettings settings;
+  settings.max_evaluations = fit.max_evaluations;
+  const SuperquadricFitResult result = fit_superquadric(points, settings);
+  spec.shape = result.shape;
+  spec.centre = result.centre;
+  const Eigen::Quaterniond rotation = Eigen::Quaterniond(result.rotation).normalized();
+  spec.orientation = Eigen::Vector4d(rotation.w(), rotation.x(), rotation.y(), rotation.z());
+}
+
+}  // namespace dnurbs

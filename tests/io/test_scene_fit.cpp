@@ -1,0 +1,185 @@
+// The "fit" key of scene models: a model's initial shape fitted to the committed point sets of
+// tests/data (generate_fit_points.py) reproduces the shape they were sampled from, the fit
+// round-trips through the writer, and the fitted model runs like any other.
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+
+#include "io/scene.h"
+#include "io/scene_simulation.h"
+#include "io/shape_file.h"
+#include "nurbs/error.h"
+
+namespace dnurbs {
+namespace {
+
+const std::filesystem::path kData = DNURBS_TEST_DATA_DIR;
+
+const char* const kSurfaceFitScene = R"json({
+  "models": [{"name": "scan", "type": "dnurbs_surface",
+              "fit": {"points": "fit_surface_points.xyz", "degree": 3, "spans": 2,
+                      "smoothness": 0, "iterations": 10},
+              "material": {"mass_density": 1, "damping_density": 1, "a10": 1, "a01": 1}}],
+  "forces": [{"type": "spring", "model": "scan", "at": [0.5, 0.5], "stiffness": 5,
+              "target": [1, 0.75, 2]}],
+  "integrator": {"dt": 0.01},
+  "run": {"steps": 3}
+})json";
+
+const char* const kSuperquadricFitScene = R"json({
+  "models": [{"name": "blob", "type": "superquadric", "parts": "global",
+              "fit": {"points": "fit_superquadric_points.xyz"}}],
+  "integrator": {"dt": 0.01},
+  "run": {"steps": 3}
+})json";
+
+// Largest distance between corresponding control points of a and b, over the eight ways the
+// same surface is parametrised with the same knots (u and v reversed or swapped): the fit
+// starts over the principal axes of the points, whose signs are arbitrary.
+double control_point_distance(const NurbsSurface& a, const NurbsSurface& b) {
+  const int n = a.control_point_count_u();
+  double best = std::numeric_limits<double>::infinity();
+  for (int symmetry = 0; symmetry < 8; ++symmetry) {
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        int bi = (symmetry & 1) != 0 ? n - 1 - i : i;
+        int bj = (symmetry & 2) != 0 ? n - 1 - j : j;
+        if ((symmetry & 4) != 0) {
+          std::swap(bi, bj);
+        }
+        worst = std::max(worst, (a.control_points().row(a.control_point_index(i, j)) -
+                                 b.control_points().row(b.control_point_index(bi, bj)))
+                                    .norm());
+      }
+    }
+    best = std::min(best, worst);
+  }
+  return best;
+}
+
+TEST(SceneFit, FittedSurfaceReproducesTheSampledSurface) {
+  const Scene scene = parse_scene_json(kSurfaceFitScene, "fit.json", kData);
+  const auto& spec = std::get<SceneDNurbsSurface>(scene.models[0].spec);
+  ASSERT_TRUE(spec.fit.has_value());
+  const NurbsSurface source =
+      std::get<NurbsSurface>(read_shape_file(kData / "fit_surface_source.json"));
+  EXPECT_EQ(spec.surface.knots_u().knots(), source.knots_u().knots());
+  EXPECT_EQ(spec.surface.knots_v().knots(), source.knots_v().knots());
+  // The points lie on the source (same degree and knots) and the flat start over their
+  // principal plane projects each to its own parameters (generate_fit_points.py), so the first
+  // least-squares solve recovers the control points up to rounding
+  EXPECT_LT(control_point_distance(spec.surface, source), 1e-8);
+}
+
+TEST(SceneFit, FittedSuperquadricReproducesTheSampledShape) {
+  const Scene scene = parse_scene_json(kSuperquadricFitScene, "fit.json", kData);
+  const auto& spec = std::get<SceneSuperquadric>(scene.models[0].spec);
+  ASSERT_TRUE(spec.fit.has_value());
+  // generate_fit_points.py: sizes 1.2, 0.8, 0.6, e1 0.7, e2 1.3, taper 0.2, -0.1, no bend.
+  // Exact points: the error is the optimiser's stopping tolerance (2.4e-8 measured)
+  EXPECT_NEAR(spec.shape(0), 1.0, 1e-12);
+  EXPECT_NEAR(spec.shape(1), 1.2, 1e-6);
+  EXPECT_NEAR(spec.shape(2), 0.8, 1e-6);
+  EXPECT_NEAR(spec.shape(3), 0.6, 1e-6);
+  EXPECT_NEAR(spec.shape(4), 0.7, 1e-6);
+  EXPECT_NEAR(spec.shape(5), 1.3, 1e-6);
+  EXPECT_NEAR(spec.shape(6), 0.2, 1e-6);
+  EXPECT_NEAR(spec.shape(7), -0.1, 1e-6);
+  EXPECT_NEAR(spec.shape(8), 0.0, 1e-6);
+  EXPECT_LT((spec.centre - Eigen::Vector3d(0.3, -0.2, 0.5)).norm(), 1e-6);
+  // Rotation 0.5 rad about (1, 2, 3) / |(1, 2, 3)|, up to the half turn about the body z axis
+  // that maps this shape (no bend) to itself: R_expected^T R_fitted = diag(+-1, +-1, 1)
+  const Eigen::Matrix3d expected =
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d fitted = Eigen::Quaterniond(spec.orientation(0), spec.orientation(1),
+                                                    spec.orientation(2), spec.orientation(3))
+                                     .toRotationMatrix();
+  const Eigen::Matrix3d relative = expected.transpose() * fitted;
+  const double sign = relative(0, 0) > 0.0 ? 1.0 : -1.0;
+  EXPECT_LT((relative - Eigen::Vector3d(sign, sign, 1.0).asDiagonal().toDenseMatrix()).norm(),
+            1e-6);
+}
+
+TEST(SceneFit, FitRoundTripsThroughTheWriter) {
+  for (const char* text : {kSurfaceFitScene, kSuperquadricFitScene}) {
+    const Scene scene = parse_scene_json(text, "fit.json", kData);
+    const std::string written = scene_to_json(scene);
+    EXPECT_THAT(written, ::testing::HasSubstr("\"fit\""));
+    EXPECT_THAT(written, ::testing::Not(::testing::HasSubstr("\"shape\"")));
+    const Scene again = parse_scene_json(written, "written.json", kData);
+    EXPECT_TRUE(again == scene) << written;
+    EXPECT_EQ(scene_to_json(again), written);
+  }
+}
+
+TEST(SceneFit, FittedModelsStartFromTheFitAndRun) {
+  const Scene scene = parse_scene_json(kSurfaceFitScene, "fit.json", kData);
+  SceneSimulation simulation(scene);
+  const NurbsSurface& fitted = std::get<SceneDNurbsSurface>(scene.models[0].spec).surface;
+  EXPECT_EQ(shape_to_json(*simulation.shape(0)), shape_to_json(Shape(fitted)));
+  const Eigen::Vector3d before = fitted.point(0.5, 0.5);
+  for (int i = 0; i < scene.step_count(); ++i) {
+    simulation.step();
+  }
+  EXPECT_TRUE(simulation.system().coordinates().allFinite());
+  // The spring pulls the middle towards (1, 0.75, 2), above the surface: it rises
+  const Eigen::Vector3d after = std::get<NurbsSurface>(*simulation.shape(0)).point(0.5, 0.5);
+  EXPECT_GT(after.z(), before.z());
+  SceneSimulation superquadric(parse_scene_json(kSuperquadricFitScene, "fit.json", kData));
+  superquadric.step();
+  EXPECT_TRUE(superquadric.system().coordinates().allFinite());
+}
+
+TEST(SceneFit, CurveFitRecoversAStraightLineOfPoints) {
+  // Points on the segment (0, 0, 0)-(3, 0, 0): a cubic with 2 spans reproduces it exactly
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "dnurbs_line.xyz";
+  {
+    std::ofstream out(file);
+    for (int k = 0; k <= 20; ++k) {
+      out << 3.0 * k / 20 << " 0 0\n";
+    }
+  }
+  const std::string text = R"({"models": [{"type": "dnurbs_curve", "fit": {"points": ")" +
+                           file.string() + R"(", "degree": 3, "spans": 2}}], "run": {"steps": 1}})";
+  const Scene scene = parse_scene_json(text);
+  const NurbsCurve& curve = std::get<SceneDNurbsCurve>(scene.models[0].spec).curve;
+  EXPECT_EQ(curve.degree(), 3);
+  EXPECT_EQ(curve.control_point_count(), 5);
+  const Eigen::Vector3d a = curve.point(0.0);
+  const Eigen::Vector3d b = curve.point(1.0);
+  EXPECT_NEAR(std::min(a.x(), b.x()), 0.0, 1e-12);
+  EXPECT_NEAR(std::max(a.x(), b.x()), 3.0, 1e-12);
+  EXPECT_NEAR(curve.point(0.3).tail<2>().norm(), 0.0, 1e-12);
+  std::filesystem::remove(file);
+}
+
+TEST(SceneFit, BadFitsNameTheirJsonPath) {
+  auto message = [](const std::string& fit) {
+    const std::string text =
+        R"({"models": [{"type": "dnurbs_surface", "fit": )" + fit + R"(}], "run": {"steps": 1}})";
+    try {
+      parse_scene_json(text, "bad.json", kData);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(message(R"({"points": "fit_surface_points.xyz", "spans": 0})"),
+              ::testing::HasSubstr("bad.json: models[0].fit.spans: expected an integer in 1.."));
+  EXPECT_THAT(message(R"({"degree": 2})"),
+              ::testing::HasSubstr("bad.json: models[0].fit.points: missing key"));
+  // 144 points cannot determine 20 x 20 control points without smoothness
+  EXPECT_THAT(message(R"({"points": "fit_surface_points.xyz", "spans": 17})"),
+              ::testing::HasSubstr("bad.json: models[0].fit: "));
+}
+
+}  // namespace
+}  // namespace dnurbs
