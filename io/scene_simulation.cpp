@@ -4,7 +4,10 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
@@ -270,31 +273,139 @@ NurbsCurve polyline(const NodePositions& nodes, bool closed) {
   return NurbsCurve(KnotVector(1, knots), nodes);
 }
 
-std::pair<long long, long long> factor_size(const SparseMatrix& matrix) {
+// Sizes of a symmetric pattern and of its LDL^T factor, and the work of one factorisation.
+struct FactorSize {
+  long long matrix_non_zeros = 0;
+  long long factor_non_zeros = 0;   // -1 if the pattern could not be factored
+  double factorization_work = 0.0;  // sum over columns of (entries of L in the column)^2
+};
+
+FactorSize factor_size(const SparseMatrix& matrix) {
   // Values that make the pattern positive definite: the factor's pattern is what counts
   SparseMatrix a = matrix;
+  Eigen::VectorXd row_count = Eigen::VectorXd::Zero(a.rows());
   for (int k = 0; k < a.outerSize(); ++k) {
     for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
       it.valueRef() = it.row() == it.col() ? 0.0 : -1.0;
+      row_count(it.row()) += 1.0;
     }
   }
   SparseMatrix diagonal(a.rows(), a.cols());
   diagonal.setIdentity();
-  Eigen::VectorXd row_count = Eigen::VectorXd::Zero(a.rows());
-  for (int k = 0; k < a.outerSize(); ++k) {
-    for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
-      row_count(it.row()) += 1.0;
-    }
-  }
   for (int i = 0; i < a.rows(); ++i) {
     diagonal.coeffRef(i, i) = row_count(i) + 1.0;
   }
   a += diagonal;
+  FactorSize size;
+  size.matrix_non_zeros = matrix.nonZeros();
   Eigen::SimplicialLDLT<SparseMatrix> ldlt(a);  // AMD ordering, as the integrators use
   if (ldlt.info() != Eigen::Success) {
-    return {matrix.nonZeros(), -1};
+    size.factor_non_zeros = -1;
+    return size;
   }
-  return {matrix.nonZeros(), ldlt.matrixL().nestedExpression().nonZeros()};
+  const auto& factor = ldlt.matrixL().nestedExpression();
+  size.factor_non_zeros = factor.nonZeros();
+  for (int k = 0; k < factor.outerSize(); ++k) {
+    const double column =
+        static_cast<double>(factor.outerIndexPtr()[k + 1] - factor.outerIndexPtr()[k]);
+    size.factorization_work += column * column;
+  }
+  return size;
+}
+
+// The rows and columns of `matrix` whose index is not in `fixed` (sorted): the system the
+// integrators solve once the fixed coordinates are eliminated
+SparseMatrix free_block(const SparseMatrix& matrix, const std::vector<int>& fixed) {
+  std::vector<int> position(static_cast<size_t>(matrix.rows()), -1);
+  int free_count = 0;
+  for (int i = 0; i < matrix.rows(); ++i) {
+    if (!std::binary_search(fixed.begin(), fixed.end(), i)) {
+      position[static_cast<size_t>(i)] = free_count++;
+    }
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int k = 0; k < matrix.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(matrix, k); it; ++it) {
+      const int row = position[static_cast<size_t>(it.row())];
+      const int column = position[static_cast<size_t>(it.col())];
+      if (row >= 0 && column >= 0) {
+        entries.emplace_back(row, column, it.value());
+      }
+    }
+  }
+  SparseMatrix block(free_count, free_count);
+  block.setFromTriplets(entries.begin(), entries.end());
+  return block;
+}
+
+// Sizes and the work of one solve of a model at its initial state, fixed coordinates eliminated
+SceneModelCost model_cost(const Model& model) {
+  SceneModelCost c;
+  c.coordinates = model.coordinate_count();
+  c.velocities = model.velocity_count();
+  std::vector<int> fixed = model.fixed_coordinates();
+  std::sort(fixed.begin(), fixed.end());
+  c.fixed = static_cast<int>(fixed.size());
+  c.constant_matrices = model.matrices_are_constant();
+  c.kronecker_block = model.kronecker_block_size();
+  ModelMatrices matrices;
+  if (c.kronecker_block > 0 && model.scalar_matrices() != nullptr) {
+    matrices = *model.scalar_matrices();
+    // A scalar node is eliminated when all of its x, y, z are fixed
+    std::vector<int> fixed_nodes;
+    for (size_t k = 0; k + 2 < fixed.size(); ++k) {
+      if (fixed[k] % 3 == 0 && fixed[k + 1] == fixed[k] + 1 && fixed[k + 2] == fixed[k] + 2) {
+        fixed_nodes.push_back(fixed[k] / 3);
+      }
+    }
+    fixed = fixed_nodes;
+  } else {
+    model.assemble_matrices(model.initial_coordinates(), matrices);
+  }
+  SparseMatrix sum = matrices.mass;
+  if (matrices.damping.nonZeros() > 0) {
+    sum += matrices.damping;
+  }
+  if (matrices.stiffness.nonZeros() > 0) {
+    sum += matrices.stiffness;
+  }
+  // The christoffel Terzopoulos stiffness is not symmetric: factor its symmetric pattern
+  const SparseMatrix transposed = sum.transpose();
+  sum += transposed;
+  const FactorSize size = factor_size(free_block(sum, fixed));
+  c.matrix_non_zeros = size.matrix_non_zeros;
+  c.factor_non_zeros = size.factor_non_zeros;
+  // One solve: a forward and a backward substitution per right-hand side with a constant
+  // factor; a factorisation first when the matrices change with the state
+  const int right_hand_sides = c.kronecker_block > 0 ? c.kronecker_block : 1;
+  c.solve_work = 2.0 * static_cast<double>(size.factor_non_zeros) * right_hand_sides +
+                 (c.constant_matrices ? 0.0 : size.factorization_work);
+  return c;
+}
+
+// The path a scene would pay for without the library's automatic choice for this model, and
+// what that choice is; nullopt when the model already takes the naive path
+std::optional<std::pair<SceneModel, std::string>> naive_variant(const SceneModel& spec) {
+  SceneModel naive = spec;
+  if (auto* c = std::get_if<SceneDNurbsCurve>(&naive.spec); c && !c->settings.free_weights) {
+    c->settings.free_weights = true;
+    return std::pair{naive, std::string("fixed weights (naive: free weights)")};
+  }
+  if (auto* s = std::get_if<SceneDNurbsSurface>(&naive.spec); s && !s->settings.free_weights) {
+    s->settings.free_weights = true;
+    return std::pair{naive, std::string("fixed weights (naive: free weights)")};
+  }
+  if (auto* sq = std::get_if<SceneSuperquadric>(&naive.spec); sq && sq->parts != "full") {
+    const std::string choice = sq->parts + " parts only (naive: rigid, global and local parts)";
+    sq->parts = "full";
+    return std::pair{naive, choice};
+  }
+  if (auto* p = std::get_if<ScenePdeSurface>(&naive.spec); p && !p->region_centres.empty()) {
+    p->region_centres.clear();
+    p->region_radii.clear();
+    return std::pair{naive, std::string("deformation regions (naive: every grid node)")};
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -591,34 +702,17 @@ void SceneSimulation::restore(const Checkpoint& checkpoint, const std::string& s
 std::vector<SceneModelCost> SceneSimulation::cost() const {
   std::vector<SceneModelCost> costs;
   for (int i = 0; i < system_.model_count(); ++i) {
-    const Model& model = system_.model(i);
-    SceneModelCost c;
-    c.name = scene_.models[static_cast<size_t>(i)].name;
-    c.type = scene_model_type(scene_.models[static_cast<size_t>(i)]);
-    c.coordinates = model.coordinate_count();
-    c.velocities = model.velocity_count();
-    c.fixed = static_cast<int>(model.fixed_coordinates().size());
-    c.constant_matrices = model.matrices_are_constant();
-    c.kronecker_block = model.kronecker_block_size();
-    ModelMatrices matrices;
-    if (c.kronecker_block > 0 && model.scalar_matrices() != nullptr) {
-      matrices = *model.scalar_matrices();
-    } else {
-      model.assemble_matrices(model.initial_coordinates(), matrices);
+    const SceneModel& spec = scene_.models[static_cast<size_t>(i)];
+    SceneModelCost c = model_cost(system_.model(i));
+    c.name = spec.name;
+    c.type = scene_model_type(spec);
+    if (const auto naive = naive_variant(spec)) {
+      const SceneModelCost naive_cost = model_cost(*build_model(naive->first));
+      c.automatic_choice = naive->second;
+      c.naive_active = naive_cost.velocities - naive_cost.fixed;
+      c.naive_constant_matrices = naive_cost.constant_matrices;
+      c.naive_solve_work = naive_cost.solve_work;
     }
-    SparseMatrix sum = matrices.mass;
-    if (matrices.damping.nonZeros() > 0) {
-      sum += matrices.damping;
-    }
-    if (matrices.stiffness.nonZeros() > 0) {
-      sum += matrices.stiffness;
-    }
-    // The christoffel Terzopoulos stiffness is not symmetric: factor its symmetric pattern
-    const SparseMatrix transposed = sum.transpose();
-    sum += transposed;
-    const auto [matrix, factor] = factor_size(sum);
-    c.matrix_non_zeros = matrix;
-    c.factor_non_zeros = factor;
     costs.push_back(c);
   }
   return costs;

@@ -38,7 +38,8 @@ struct SceneSample {
   std::vector<Eigen::Vector3d> probes;  ///< positions of the scene's probes
 };
 
-/// Size and cost of one model.
+/// Size and cost of one model (at its initial state, fixed coordinates eliminated), and what
+/// the library's automatic choice for it saves against the naive path.
 struct SceneModelCost {
   std::string name;
   std::string type;
@@ -47,9 +48,20 @@ struct SceneModelCost {
   int fixed = 0;                   ///< fixed velocity coordinates
   bool constant_matrices = false;  ///< M, D, K assembled and factored once
   int kronecker_block = 0;         ///< 3 when x, y, z share one scalar matrix
-  long long matrix_non_zeros = 0;  ///< of M + D + K (of the scalar matrix when kronecker_block)
-  long long factor_non_zeros =
-      0;  ///< of L of its LDL^T factor (AMD ordering, as the integrators use)
+  /// Non-zeros of M + D + K over the free coordinates (of the scalar matrix when
+  /// kronecker_block), and of L of its LDL^T factor (AMD ordering, as the integrators use)
+  long long matrix_non_zeros = 0;
+  long long factor_non_zeros = 0;
+  /// Work of one solve in factor entries touched: 2 nnz(L) per right-hand side, plus the
+  /// factorisation (sum of squared column counts of L) when the matrices change with the state
+  double solve_work = 0.0;
+  /// The automatic choice (fixed weights, rigid or global superquadric parts, deformation
+  /// regions; empty when the model takes the naive path) and the naive path's active
+  /// coordinates, matrix kind and solve work
+  std::string automatic_choice;
+  int naive_active = 0;
+  bool naive_constant_matrices = false;
+  double naive_solve_work = 0.0;
 };
 
 class SceneSimulation {
