@@ -6,14 +6,12 @@
 #include <optional>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
-
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "design/superquadric_fitting.h"
 #include "io/atomic_write.h"
 #include "io/mesh_export.h"
-#include "io/mesh_import.h"
+#include "io/scene_fit.h"
 #include "io/shape_file.h"
 #include "nurbs/error.h"
 #include "surface/parametric_surface.h"
@@ -47,21 +45,6 @@ exit codes: 0 ok, 1 bad data, 2 bad command line
 )";
 
 namespace {
-
-Eigen::MatrixX3d read_points(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".xyz" || extension == ".txt" || extension == ".csv") {
-    return load_points(path);
-  }
-  const std::vector<TriangleMesh> meshes = import_meshes(path);
-  try {
-    return mesh_vertices(meshes);
-  } catch (const Error& error) {
-    throw make_error(path.string(), ": ", error.what());
-  }
-}
 
 void print_vector(std::ostream& out, const Eigen::VectorXd& values) {
   out << "[";
@@ -107,34 +90,13 @@ int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& ou
 int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, double smoothness,
                         int iterations, const FitOutput& output, std::ostream& out) {
   // A flat start over the principal plane of the points, covering their extent.
-  const Eigen::RowVector3d centroid = points.colwise().mean();
-  const Eigen::MatrixX3d centred = points.rowwise() - centroid;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
-  const Eigen::Vector3d axis_u = eigen.eigenvectors().col(2);
-  const Eigen::Vector3d axis_v = eigen.eigenvectors().col(1);
-  const Eigen::VectorXd along_u = centred * axis_u;
-  const Eigen::VectorXd along_v = centred * axis_v;
-  const KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
-  const int n = knots.control_point_count();
-  Eigen::MatrixX3d control(n * n, 3);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      double gu = 0.0;
-      double gv = 0.0;
-      for (int k = 1; k <= degree; ++k) {
-        gu += knots[i + k] / degree;
-        gv += knots[j + k] / degree;
-      }
-      const double x = along_u.minCoeff() + gu * (along_u.maxCoeff() - along_u.minCoeff());
-      const double y = along_v.minCoeff() + gv * (along_v.maxCoeff() - along_v.minCoeff());
-      control.row(i * n + j) = centroid + (x * axis_u + y * axis_v).transpose();
-    }
-  }
+  const NurbsSurface start = principal_plane_surface(points, degree, spans);
+  const KnotVector& knots = start.knots_u();
   DNurbsSurfaceMaterial material;
   material.b20 = 1.0;
   material.b11 = 1.0;
   material.b02 = 1.0;
-  const DNurbsSurface model(NurbsSurface(knots, knots, control), material);
+  const DNurbsSurface model(start, material);
   DNurbsFitSettings settings;
   settings.smoothness = smoothness;
   settings.max_iterations = iterations;
@@ -195,7 +157,7 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
     throw UsageError(
         std::string("unknown fit shape '").append(shape).append("' (superquadric or surface)"));
   }
-  const Eigen::MatrixX3d points = read_points(path);
+  const Eigen::MatrixX3d points = read_fit_points(path);
   if (shape == "superquadric") {
     return fit_superquadric_command(points, output, out);
   }
