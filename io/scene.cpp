@@ -738,7 +738,8 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
 
   if (const Json* boundary = reader.find(value, "boundary")) {
     const std::string boundary_path = join(path, "boundary");
-    reader.object(*boundary, boundary_path, {"clamp_border", "fixed_points"});
+    reader.object(*boundary, boundary_path,
+                  {"clamp_border", "fixed_points", "local_sculpting_margin"});
     reader.boolean_key(*boundary, boundary_path, "clamp_border", model.boundary.clamp_border);
     if (model.boundary.clamp_border && type != "dnurbs_surface" && type != "terzopoulos_surface") {
       reader.fail(join(boundary_path, "clamp_border"),
@@ -752,6 +753,16 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
         reader.fail(join(boundary_path, "fixed_points"),
                     "expected no fixed points: a superquadric has no control points or nodes");
       }
+    }
+    if (reader.find(*boundary, "local_sculpting_margin")) {
+      if (type != "dnurbs_surface" && type != "dnurbs_curve") {
+        reader.fail(join(boundary_path, "local_sculpting_margin"),
+                    "expected no local sculpting: only D-NURBS models have control points to "
+                    "freeze (this is a " +
+                        type + ")");
+      }
+      reader.integer_key(*boundary, boundary_path, "local_sculpting_margin",
+                         model.boundary.local_sculpting_margin, 0, 1000000);
     }
   }
   if (const Json* scale = reader.find(value, "resolution_scale")) {
@@ -1225,9 +1236,13 @@ OrderedJson model_json(const SceneModel& model) {
                      {"tension", snake.tension},
                      {"rigidity", snake.rigidity}};
   }
-  if (model.boundary.clamp_border || !model.boundary.fixed_points.empty()) {
+  if (model.boundary.clamp_border || !model.boundary.fixed_points.empty() ||
+      model.boundary.local_sculpting_margin >= 0) {
     j["boundary"] = {{"clamp_border", model.boundary.clamp_border},
                      {"fixed_points", model.boundary.fixed_points}};
+    if (model.boundary.local_sculpting_margin >= 0) {
+      j["boundary"]["local_sculpting_margin"] = model.boundary.local_sculpting_margin;
+    }
   }
   if (model.resolution_scale != Eigen::Vector2d::Ones()) {
     j["resolution_scale"] = parameter_json(model.resolution_scale);

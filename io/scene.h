@@ -45,6 +45,10 @@ struct ScalarSchedule {
 struct SceneBoundary {
   bool clamp_border = false;      ///< D-NURBS surfaces and Terzopoulos surfaces only
   std::vector<int> fixed_points;  ///< control points (D-NURBS) or nodes (grids, snakes)
+  /// D-NURBS only, >= 0: local sculpting (dynamics/local_sculpting.h), the control points
+  /// outside the support of the model's forces and constraints grown by this many rings are
+  /// fixed; -1: off
+  int local_sculpting_margin = -1;
   bool operator==(const SceneBoundary&) const = default;
 };
 

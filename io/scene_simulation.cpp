@@ -19,6 +19,7 @@
 #include "dynamics/dnurbs_curve.h"
 #include "dynamics/dnurbs_surface.h"
 #include "dynamics/forces.h"
+#include "dynamics/local_sculpting.h"
 #include "dynamics/pde_surface.h"
 #include "dynamics/snake.h"
 #include "dynamics/terzopoulos_surface.h"
@@ -273,6 +274,66 @@ NurbsCurve polyline(const NodePositions& nodes, bool closed) {
   return NurbsCurve(KnotVector(1, knots), nodes);
 }
 
+// Local sculpting of model `index` (boundary.local_sculpting_margin >= 0): the parameters and
+// control points its forces and constraints act on; gravity, pressure and curve-on-surface
+// constraints act everywhere, and then nothing is frozen.
+void freeze_outside_scene_region(const Scene& scene, int index, Model& model) {
+  SculptedRegion region;
+  bool everywhere = false;
+  for (const SceneForce& force : scene.forces) {
+    if (const auto* p = std::get_if<ScenePointForce>(&force.spec); p && p->model == index) {
+      region.parameters.push_back(p->at);
+    } else if (const auto* s = std::get_if<SceneSpringForce>(&force.spec); s && s->model == index) {
+      region.parameters.push_back(s->at);
+    } else if (const auto* c = std::get_if<SceneControlPointForce>(&force.spec);
+               c && c->model == index) {
+      region.control_points.insert(region.control_points.end(), c->control_points.begin(),
+                                   c->control_points.end());
+    } else if (const auto* g = std::get_if<SceneGravity>(&force.spec)) {
+      everywhere = everywhere || g->model == -1 || g->model == index;
+    } else if (const auto* pressure = std::get_if<ScenePressure>(&force.spec)) {
+      everywhere = everywhere || pressure->model == index;
+    }
+  }
+  for (const SceneConstraint& constraint : scene.constraints) {
+    if (const auto* t = std::get_if<ScenePointTargetConstraint>(&constraint.spec);
+        t && t->model == index) {
+      region.parameters.push_back(t->at);
+    } else if (const auto* pp = std::get_if<ScenePointToPointConstraint>(&constraint.spec)) {
+      if (pp->model_a == index) {
+        region.parameters.push_back(pp->at_a);
+      }
+      if (pp->model_b == index) {
+        region.parameters.push_back(pp->at_b);
+      }
+    } else if (const auto* h = std::get_if<SceneHingeConstraint>(&constraint.spec)) {
+      if (h->model_a == index) {
+        region.parameters.insert(region.parameters.end(), {h->axis_a0, h->axis_a1});
+      }
+      if (h->model_b == index) {
+        region.parameters.insert(region.parameters.end(), {h->axis_b0, h->axis_b1});
+      }
+    } else if (const auto* c = std::get_if<SceneControlPointConstraint>(&constraint.spec);
+               c && c->model == index) {
+      region.control_points.push_back(c->control_point);
+    } else if (const auto* n = std::get_if<SceneSurfaceNormalConstraint>(&constraint.spec);
+               n && n->model == index) {
+      region.parameters.push_back(n->at);
+    } else if (const auto* cs = std::get_if<SceneCurveOnSurfaceConstraint>(&constraint.spec)) {
+      everywhere = everywhere || cs->curve_model == index || cs->surface_model == index;
+    }
+  }
+  if (everywhere) {
+    return;
+  }
+  const int margin = scene.models[static_cast<size_t>(index)].boundary.local_sculpting_margin;
+  if (auto* surface = dynamic_cast<DNurbsSurface*>(&model)) {
+    freeze_outside_sculpted_region(*surface, region, margin);
+  } else if (auto* curve = dynamic_cast<DNurbsCurve*>(&model)) {
+    freeze_outside_sculpted_region(*curve, region, margin);
+  }
+}
+
 // Sizes of a symmetric pattern and of its LDL^T factor, and the work of one factorisation.
 struct FactorSize {
   long long matrix_non_zeros = 0;
@@ -419,6 +480,13 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
       model = build_model(spec);
     } catch (const Error& error) {
       fail(scene_, indexed("models", i), error.what());
+    }
+    if (spec.boundary.local_sculpting_margin >= 0) {
+      try {
+        freeze_outside_scene_region(scene_, static_cast<int>(i), *model);
+      } catch (const Error& error) {
+        fail(scene_, indexed("models", i) + ".boundary.local_sculpting_margin", error.what());
+      }
     }
     system_.add_model(*model);
     if (const auto* c = std::get_if<SceneDNurbsCurve>(&spec.spec)) {

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "io/scene.h"
 #include "io/scene_simulation.h"
@@ -62,6 +63,67 @@ TEST(SceneCost, PdeSurfaceRegionSimulatesOnlyItsNodes) {
   EXPECT_EQ(plate.automatic_choice, "deformation regions (naive: every grid node)");
   EXPECT_LT(plate.velocities - plate.fixed, plate.naive_active);
   EXPECT_GT(plate.naive_solve_work, plate.solve_work);
+}
+
+// A flat bicubic sheet of 9 x 9 control points (6 spans each way) with a spring at (0.5, 0.5),
+// clamped, with local sculpting at `margin` (and gravity on it when `gravity`)
+Scene sculpting_scene(int margin, bool gravity) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < 9; ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int j = 0; j < 9; ++j) {
+      row.push_back({i / 8.0, j / 8.0, 0.0});
+    }
+    rows.push_back(row);
+  }
+  const std::vector<double> knots{0, 0, 0, 0, 1 / 6.0, 2 / 6.0, 0.5, 4 / 6.0, 5 / 6.0, 1, 1, 1, 1};
+  nlohmann::json scene = {
+      {"models",
+       {{{"name", "sheet"},
+         {"type", "dnurbs_surface"},
+         {"shape",
+          {{"type", "nurbs_surface"},
+           {"degree_u", 3},
+           {"degree_v", 3},
+           {"knots_u", knots},
+           {"knots_v", knots},
+           {"control_points", rows}}},
+         {"material", {{"a10", 1}, {"a01", 1}}},
+         {"boundary", {{"clamp_border", true}, {"local_sculpting_margin", margin}}}}}},
+      {"forces",
+       {{{"type", "spring"},
+         {"model", "sheet"},
+         {"at", {0.5, 0.5}},
+         {"stiffness", 1},
+         {"target", {0.5, 0.5, 0.2}}}}},
+      {"run", {{"duration", 0.1}}}};
+  if (gravity) {
+    scene["forces"].push_back({{"type", "gravity"}, {"acceleration", {0, 0, -1}}});
+  }
+  return parse_scene_json(scene.dump(), "sculpting.json");
+}
+
+TEST(SceneCost, LocalSculptingKeepsTheSupportOfTheSpringGrownByTheMargin) {
+  // (0.5, 0.5) starts span [0.5, 4/6) in each direction, driven by control point indices 3..6:
+  // 4 x 4 control points at margin 0, 6 x 6 (2..7) at margin 1, all 7 x 7 interior ones at 2
+  const auto active = [](const Scene& scene) {
+    const SceneModelCost c = SceneSimulation(scene).cost().front();
+    return c.velocities - c.fixed;
+  };
+  EXPECT_EQ(active(sculpting_scene(0, false)), 4 * 4 * 3);
+  EXPECT_EQ(active(sculpting_scene(1, false)), 6 * 6 * 3);
+  EXPECT_EQ(active(sculpting_scene(2, false)), 7 * 7 * 3);
+  // Gravity acts everywhere: nothing is frozen
+  EXPECT_EQ(active(sculpting_scene(0, true)), 7 * 7 * 3);
+  // The frozen sheet still runs: the spring's point rises, the frozen control points stay
+  SceneSimulation simulation(sculpting_scene(1, false));
+  const Eigen::VectorXd before = simulation.system().coordinates(0);
+  for (int step = 0; step < 10; ++step) {
+    simulation.step();
+  }
+  const Eigen::VectorXd after = simulation.system().coordinates(0);
+  EXPECT_GT(after[3 * (4 * 9 + 4) + 2], 0.0);  // the centre control point moved up
+  EXPECT_EQ(after[3 * (1 * 9 + 1) + 2], before[3 * (1 * 9 + 1) + 2]);  // (1, 1) is frozen
 }
 
 }  // namespace

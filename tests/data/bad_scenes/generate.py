@@ -141,6 +141,11 @@ case("fit_superquadric_with_centre", f, "models[2].fit: expected either \"fit\" 
 def f(s): del s["models"][0]["shape"]; s["models"][0]["fit"] = {"points": "../fit_surface_points.xyz", "spans": 17}
 case("fit_too_few_points", f, "models[0].fit:")
 
+def f(s): s["models"][1]["boundary"] = {"local_sculpting_margin": 1}
+case("local_sculpting_on_snake", f, "models[1].boundary.local_sculpting_margin: expected no local sculpting: only D-NURBS models")
+def f(s): s["models"][0]["boundary"] = {"local_sculpting_margin": -2}
+case("local_sculpting_negative_margin", f, "models[0].boundary.local_sculpting_margin: expected an integer")
+
 import sys
 out = os.path.dirname(os.path.abspath(__file__))
 # Hand-written cases (design_*.json) are kept with their lines of expected_messages.tsv
