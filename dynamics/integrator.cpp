@@ -1,5 +1,6 @@
 #include "dynamics/integrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/SparseCholesky>
@@ -48,11 +49,15 @@ SparseMatrix reduce(const SparseMatrix& matrix, const std::vector<int>& free_ind
   return result;
 }
 
-// M + c_D D + c_K K (an empty D is skipped).
+// M + c_D D + c_K K (an empty D and zero coefficients are skipped, so that c_D = c_K = 0
+// factors M with its own pattern).
 SparseMatrix effective_matrix(const ModelMatrices& matrices, double damping_coefficient,
                               double stiffness_coefficient) {
-  SparseMatrix result = matrices.mass + stiffness_coefficient * matrices.stiffness;
-  if (matrices.damping.nonZeros() > 0) {
+  SparseMatrix result = matrices.mass;
+  if (stiffness_coefficient != 0.0) {
+    result += stiffness_coefficient * matrices.stiffness;
+  }
+  if (damping_coefficient != 0.0 && matrices.damping.nonZeros() > 0) {
     result += damping_coefficient * matrices.damping;
   }
   return result;
@@ -75,6 +80,165 @@ int first_non_finite(const Eigen::VectorXd& x) {
   }
   return -1;
 }
+
+// One diagonal block of A: the velocities of one model (the System's matrices are block
+// diagonal by model, so A^{-1} r is the per-block solves stacked). Fixed coordinates are
+// eliminated inside the block; a constant model with the S (x) I_3 structure whose fixed
+// coordinates come in node triples is factored as its scalar matrix with x, y, z as three
+// right-hand sides (the Kronecker layout: unknowns are nodes, right-hand sides node-by-3).
+struct MatrixBlock {
+  int model = 0;
+  int coordinate_offset = 0;
+  int coordinate_count = 0;
+  int velocity_offset = 0;
+  int velocity_count = 0;
+  bool constant = false;
+  bool kronecker = false;
+  // The coefficients the factorization was built for (constant blocks reuse it).
+  bool factored = false;
+  double position_coefficient = 0.0;
+  double velocity_coefficient = 0.0;
+  int factorizations = 0;
+  // free_index[k] >= 0 for free unknowns (nodes in the Kronecker layout, velocities otherwise),
+  // free_list the inverse map; both local to the block.
+  std::vector<int> free_index;
+  std::vector<int> free_list;
+  Eigen::SimplicialLDLT<SparseMatrix> solver;
+  SparseMatrix analyzed_pattern;  // reduced block whose pattern the solver has analyzed
+  ModelMatrices matrices;         // state-dependent blocks: M, D, K at the current iterate
+  Eigen::MatrixXd rhs_free, x_free;
+
+  MatrixBlock(const System& system, int index) : model(index) {
+    const Model& m = system.model(index);
+    coordinate_offset = system.coordinate_offset(index);
+    coordinate_count = m.coordinate_count();
+    velocity_offset = system.velocity_offset(index);
+    velocity_count = m.velocity_count();
+    constant = m.matrices_are_constant() && m.constant_matrices() != nullptr;
+    const std::vector<int>& fixed = m.fixed_coordinates();
+    kronecker = constant && m.kronecker_block_size() == 3 && m.scalar_matrices() != nullptr &&
+                velocity_count % 3 == 0 && coordinate_count == velocity_count && [&] {
+                  for (size_t i = 0; i < fixed.size(); i += 3) {
+                    if (i + 2 >= fixed.size() || fixed[i] % 3 != 0 ||
+                        fixed[i + 1] != fixed[i] + 1 || fixed[i + 2] != fixed[i] + 2) {
+                      return false;
+                    }
+                  }
+                  return true;
+                }();
+    const int unit = kronecker ? 3 : 1;
+    free_index.assign(static_cast<size_t>(velocity_count / unit), 0);
+    for (const int local : fixed) {
+      free_index[static_cast<size_t>(local / unit)] = -1;
+    }
+    for (size_t k = 0; k < free_index.size(); ++k) {
+      if (free_index[k] >= 0) {
+        free_index[k] = static_cast<int>(free_list.size());
+        free_list.push_back(static_cast<int>(k));
+      }
+    }
+  }
+
+  // The model's full (velocity-space) matrices: the constant ones, or those last assembled.
+  const ModelMatrices& full_matrices(const System& system) const {
+    return constant ? *system.model(model).constant_matrices() : matrices;
+  }
+
+  // Factors M + c_D D + c_K K of the block (the scalar matrices in the Kronecker layout, which
+  // constant blocks take from the model; state-dependent blocks from `matrices`). A block whose
+  // factorization throws stays unfactored.
+  void factor(const System& system, double damping_coefficient, double stiffness_coefficient) {
+    const ModelMatrices& source =
+        kronecker ? *system.model(model).scalar_matrices() : full_matrices(system);
+    factored = false;
+    ++factorizations;
+    if (!free_list.empty()) {
+      factor_free(source, damping_coefficient, stiffness_coefficient);
+    }
+    position_coefficient = stiffness_coefficient;
+    velocity_coefficient = damping_coefficient;
+    factored = true;
+  }
+
+  // SimplicialLDLT of the free rows and columns (the pattern analyzed only when it changes).
+  void factor_free(const ModelMatrices& source, double damping_coefficient,
+                   double stiffness_coefficient) {
+    const SparseMatrix reduced =
+        reduce(effective_matrix(source, damping_coefficient, stiffness_coefficient), free_index,
+               static_cast<int>(free_list.size()));
+    if (!same_pattern(reduced, analyzed_pattern)) {
+      solver.analyzePattern(reduced);
+      analyzed_pattern = reduced;
+    }
+    solver.factorize(reduced);
+    if (solver.info() != Eigen::Success) {
+      throw make_error("the effective matrix A = M + c D + c' K of model ", model, " (",
+                       reduced.rows(),
+                       " free unknowns) could not be factored: is some free coordinate without "
+                       "mass?");
+    }
+  }
+
+  // x = A_ff^{-1} r on the block's free unknowns, zero on its fixed ones (block segments of the
+  // stacked vectors).
+  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
+    const auto free_count = static_cast<Eigen::Index>(free_list.size());
+    if (free_count == 0) {
+      return;
+    }
+    if (kronecker) {
+      const ConstNodeMap R(r.data() + velocity_offset, velocity_count / 3, 3);
+      NodeMap X(x.data() + velocity_offset, velocity_count / 3, 3);
+      rhs_free.resize(free_count, 3);
+      for (Eigen::Index i = 0; i < free_count; ++i) {
+        rhs_free.row(i) = R.row(free_list[static_cast<size_t>(i)]);
+      }
+      x_free = solver.solve(rhs_free);
+      for (Eigen::Index i = 0; i < free_count; ++i) {
+        X.row(free_list[static_cast<size_t>(i)]) = x_free.row(i);
+      }
+    } else {
+      rhs_free.resize(free_count, 1);
+      for (Eigen::Index i = 0; i < free_count; ++i) {
+        rhs_free(i, 0) = r[velocity_offset + free_list[static_cast<size_t>(i)]];
+      }
+      x_free = solver.solve(rhs_free);
+      for (Eigen::Index i = 0; i < free_count; ++i) {
+        x[velocity_offset + free_list[static_cast<size_t>(i)]] = x_free(i, 0);
+      }
+    }
+  }
+};
+
+// The blocks of one System layout (rebuilt when the System's revision or size changes).
+struct MatrixBlocks {
+  bool laid_out = false;
+  std::uint64_t revision = 0;
+  int velocity_count = 0;
+  std::vector<std::unique_ptr<MatrixBlock>> blocks;
+
+  void layout(const System& system) {
+    if (laid_out && revision == system.revision() && velocity_count == system.velocity_count() &&
+        static_cast<int>(blocks.size()) == system.model_count()) {
+      return;
+    }
+    blocks.clear();
+    for (int i = 0; i < system.model_count(); ++i) {
+      blocks.push_back(std::make_unique<MatrixBlock>(system, i));
+    }
+    laid_out = true;
+    revision = system.revision();
+    velocity_count = system.velocity_count();
+  }
+
+  // x = A^{-1} r block by block (zero on fixed coordinates).
+  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
+    x.setZero(r.size());
+    for (const auto& block : blocks) {
+      block->solve(r, x);
+    }
+  }
+};
 
 }  // namespace
 
@@ -104,82 +268,11 @@ std::string_view to_string(IntegratorScheme scheme) {
   return "unknown";
 }
 
-// Factorization of A on the free coordinates and the work vectors of a step, kept between
-// steps. In the Kronecker layout the unknowns are nodes (3 velocities each) and right-hand
-// sides are node-by-3 matrices.
+// The blocks of A and the work vectors of a step, kept between steps.
 struct Integrator::Workspace {
-  // What the factorization was built for.
-  bool factored = false;
-  bool constant = false;
-  bool kronecker = false;
-  std::uint64_t revision = 0;
-  double position_coefficient = 0.0;
-  double velocity_coefficient = 0.0;
-  // Elimination of fixed coordinates: free_index[k] >= 0 for free unknowns (nodes in the
-  // Kronecker layout, velocities otherwise), free_list the inverse map.
-  std::vector<int> free_index;
-  std::vector<int> free_list;
-  Eigen::SimplicialLDLT<SparseMatrix> solver;
-  SparseMatrix analyzed_pattern;  // reduced A whose pattern the solver has analyzed
-  // Work vectors.
-  ModelMatrices matrices;
+  MatrixBlocks blocks;
   Eigen::VectorXd q_pred, v_pred, v_store, a, delta, rhs, q_iter, v_iter, external, increment;
   Eigen::VectorXd q_new, v_new;
-  Eigen::MatrixXd rhs_free, x_free;
-
-  void set_free(const std::vector<int>& fixed, int unknowns, int block) {
-    free_index.assign(static_cast<size_t>(unknowns), 0);
-    for (const int index : fixed) {
-      free_index[static_cast<size_t>(index / block)] = -1;
-    }
-    free_list.clear();
-    for (int k = 0; k < unknowns; ++k) {
-      if (free_index[static_cast<size_t>(k)] >= 0) {
-        free_index[static_cast<size_t>(k)] = static_cast<int>(free_list.size());
-        free_list.push_back(k);
-      }
-    }
-  }
-
-  void factor(const SparseMatrix& reduced) {
-    if (!same_pattern(reduced, analyzed_pattern)) {
-      solver.analyzePattern(reduced);
-      analyzed_pattern = reduced;
-    }
-    solver.factorize(reduced);
-    if (solver.info() != Eigen::Success) {
-      throw make_error("the effective matrix A = M + c D + c' K (", reduced.rows(),
-                       " free unknowns) could not be factored: is some free coordinate without "
-                       "mass?");
-    }
-  }
-
-  // x = A_ff^{-1} r on the free unknowns, zero on the fixed ones.
-  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-    x.setZero(r.size());
-    const auto free_count = static_cast<Eigen::Index>(free_list.size());
-    if (kronecker) {
-      const ConstNodeMap R(r.data(), r.size() / 3, 3);
-      NodeMap X(x.data(), x.size() / 3, 3);
-      rhs_free.resize(free_count, 3);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        rhs_free.row(i) = R.row(free_list[static_cast<size_t>(i)]);
-      }
-      x_free = solver.solve(rhs_free);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        X.row(free_list[static_cast<size_t>(i)]) = x_free.row(i);
-      }
-    } else {
-      rhs_free.resize(free_count, 1);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        rhs_free(i, 0) = r[free_list[static_cast<size_t>(i)]];
-      }
-      x_free = solver.solve(rhs_free);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        x[free_list[static_cast<size_t>(i)]] = x_free(i, 0);
-      }
-    }
-  }
 };
 
 Integrator::Integrator(IntegratorSettings settings)
@@ -212,8 +305,17 @@ Integrator::Integrator(Integrator&&) noexcept = default;
 Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 Integrator::~Integrator() = default;
 
+int Integrator::block_factorization_count(int model) const {
+  const MatrixBlocks& blocks = work_->blocks;
+  if (model < 0 || model >= static_cast<int>(blocks.blocks.size())) {
+    throw make_error("model index ", model, " is outside the ", blocks.blocks.size(),
+                     " blocks of the last stepped system");
+  }
+  return blocks.blocks[static_cast<size_t>(model)]->factorizations;
+}
+
 void Integrator::initial_acceleration(System& system) {
-  // M a = f + g + f_int - D v at the current state, on the free coordinates.
+  // M a = f + g + f_int - D v at the current state, on the free coordinates, block by block.
   const int n = system.velocity_count();
   const Eigen::VectorXd& q = system.coordinates();
   Eigen::VectorXd v = system.velocities();
@@ -224,15 +326,21 @@ void Integrator::initial_acceleration(System& system) {
   system.add_applied_forces(system.time(), q, v, rhs);
   system.add_inertial_forces(q, v, rhs);
   system.add_internal_forces(q, rhs);
-  ModelMatrices matrices;
-  system.assemble_matrices(q, matrices);
-  if (matrices.damping.nonZeros() > 0) {
-    rhs.noalias() -= matrices.damping * v;
+  MatrixBlocks mass_blocks;
+  mass_blocks.layout(system);
+  for (const auto& block : mass_blocks.blocks) {
+    if (!block->constant) {
+      system.model(block->model)
+          .assemble_matrices(q.segment(block->coordinate_offset, block->coordinate_count),
+                             block->matrices);
+    }
+    const SparseMatrix& damping = block->full_matrices(system).damping;
+    if (damping.nonZeros() > 0) {
+      rhs.segment(block->velocity_offset, block->velocity_count).noalias() -=
+          damping * v.segment(block->velocity_offset, block->velocity_count);
+    }
+    block->factor(system, 0.0, 0.0);
   }
-  Workspace mass_work;
-  mass_work.set_free(system.fixed_coordinates(), n, 1);
-  mass_work.factor(
-      reduce(matrices.mass, mass_work.free_index, static_cast<int>(mass_work.free_list.size())));
   ++factorization_serial_;
   Eigen::VectorXd a;
   if (hook_) {
@@ -248,12 +356,12 @@ void Integrator::initial_acceleration(System& system) {
     step_system.factorization_serial = factorization_serial_;
     step_system.fixed_coordinates = &system.fixed_coordinates();
     step_system.rhs = &rhs;
-    step_system.solve = [&mass_work](const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-      mass_work.solve(r, x);
+    step_system.solve = [&mass_blocks](const Eigen::VectorXd& r, Eigen::VectorXd& x) {
+      mass_blocks.solve(r, x);
     };
     hook_(step_system, a);
   } else {
-    mass_work.solve(rhs, a);
+    mass_blocks.solve(rhs, a);
   }
   if (first_non_finite(a) >= 0) {
     throw make_error("initial acceleration at t = ", system.time(), " is not finite");
@@ -315,47 +423,23 @@ void Integrator::step(System& system, double dt) {
   w.q_pred.resize(system.coordinate_count());
   system.advance_coordinates(q, w.increment, w.q_pred);
 
-  // Factorization of A (constant matrices: once per dt and scheme) ---------------------------
-  const bool constant = system.matrices_are_constant();
-  const bool kronecker = constant && system.kronecker_block_size() == 3 && [&] {
-    for (size_t i = 0; i < fixed.size(); i += 3) {
-      if (i + 2 >= fixed.size() || fixed[i] % 3 != 0 || fixed[i + 1] != fixed[i] + 1 ||
-          fixed[i + 2] != fixed[i] + 2) {
-        return false;
-      }
-    }
-    return true;
-  }();
-  const bool reuse = w.factored && w.constant && constant && w.kronecker == kronecker &&
-                     w.revision == system.revision() &&
-                     w.position_coefficient == position_coefficient &&
-                     w.velocity_coefficient == velocity_coefficient;
-  if (!reuse) {
-    w.factored = false;
-    w.constant = constant;
-    w.kronecker = kronecker;
-    w.revision = system.revision();
-    w.position_coefficient = position_coefficient;
-    w.velocity_coefficient = velocity_coefficient;
-    if (kronecker) {
-      w.set_free(fixed, n / 3, 3);
-      w.factor(reduce(
-          effective_matrix(*system.scalar_matrices(), velocity_coefficient, position_coefficient),
-          w.free_index, static_cast<int>(w.free_list.size())));
+  // Constant blocks of A: factored once per dt and scheme -------------------------------------
+  w.blocks.layout(system);
+  const std::vector<std::unique_ptr<MatrixBlock>>& blocks = w.blocks.blocks;
+  bool refactored = false;
+  bool any_state_dependent = false;
+  for (const auto& block : blocks) {
+    if (!block->constant) {
+      any_state_dependent = true;
+    } else if (!block->factored || block->position_coefficient != position_coefficient ||
+               block->velocity_coefficient != velocity_coefficient) {
+      block->factor(system, velocity_coefficient, position_coefficient);
       ++factorization_count_;
-      ++factorization_serial_;
-      w.factored = true;
-    } else {
-      w.set_free(fixed, n, 1);
-      if (constant) {
-        w.factor(reduce(effective_matrix(*system.constant_matrices(), velocity_coefficient,
-                                         position_coefficient),
-                        w.free_index, static_cast<int>(w.free_list.size())));
-        ++factorization_count_;
-        ++factorization_serial_;
-        w.factored = true;
-      }
+      refactored = true;
     }
+  }
+  if (refactored) {
+    ++factorization_serial_;
   }
 
   // Forces that the central scheme evaluates once at (t, q, v) ---------------------------------
@@ -367,12 +451,14 @@ void Integrator::step(System& system, double dt) {
   }
 
   // Linearly implicit solve, then optional Newton iterations ----------------------------------
-  // Initial guess: zero for constant matrices (one solve is exact for linear models); the last
-  // acceleration for Newmark with state-dependent matrices, so that the terms the effective
-  // matrix leaves out (d g / d qd, d(M a) / dq, geometric stiffness) enter the linearly
-  // implicit step only through the O(dt) change of a, which keeps that step second order.
+  // Initial guess: zero when every block is constant (one solve is exact for linear models);
+  // the last acceleration for Newmark when some block is state-dependent, so that the terms the
+  // effective matrix leaves out (d g / d qd, d(M a) / dq, geometric stiffness, state-dependent
+  // applied forces) enter the linearly implicit step only through the O(dt) change of a, which
+  // keeps that step second order. The guess is the same for every block, as when the system was
+  // factored whole, so a constant model under state-dependent forces steps as it did then.
   const bool warm_start =
-      !constant && scheme == IntegratorScheme::kNewmark && system.accelerations_valid();
+      any_state_dependent && scheme == IntegratorScheme::kNewmark && system.accelerations_valid();
   if (warm_start) {
     w.a = system.accelerations();
     for (const int index : fixed) {
@@ -390,21 +476,28 @@ void Integrator::step(System& system, double dt) {
       system.advance_coordinates(w.q_pred, w.increment, w.q_iter);
     }
     w.v_iter = w.v_pred + velocity_coefficient * w.a;
-    if (!constant) {
-      // Iterates stay admissible too (free weights above their minimum).
-      system.project_state(w.q_iter, w.v_iter);
-    }
-    const ModelMatrices* matrices = system.constant_matrices();
-    if (!constant) {
-      system.assemble_matrices(w.q_iter, w.matrices);
-      matrices = &w.matrices;
-      w.factor(reduce(effective_matrix(w.matrices, velocity_coefficient, position_coefficient),
-                      w.free_index, static_cast<int>(w.free_list.size())));
+    // State-dependent blocks: iterates stay admissible (free weights above their minimum), then
+    // the block is re-assembled and re-factored at the iterate.
+    bool assembled = false;
+    for (const auto& block : blocks) {
+      if (block->constant) {
+        continue;
+      }
+      const Model& model = system.model(block->model);
+      auto q_block = w.q_iter.segment(block->coordinate_offset, block->coordinate_count);
+      auto v_block = w.v_iter.segment(block->velocity_offset, block->velocity_count);
+      model.project_state(q_block, v_block);
+      model.assemble_matrices(q_block, block->matrices);
+      block->factor(system, velocity_coefficient, position_coefficient);
       ++factorization_count_;
+      assembled = true;
+    }
+    if (assembled) {
       ++factorization_serial_;
     }
 
-    // b = f + g + f_int(q) - D v - M a at the iterate.
+    // b = f + g + f_int(q) - D v - M a at the iterate, block by block (a = 0 before the first
+    // solve without a warm start).
     if (central) {
       w.rhs = w.external;
     } else {
@@ -412,23 +505,32 @@ void Integrator::step(System& system, double dt) {
       system.add_applied_forces(force_time, w.q_iter, w.v_iter, w.rhs);
       system.add_inertial_forces(w.q_iter, w.v_iter, w.rhs);
     }
-    if (kronecker) {
-      const ModelMatrices& scalar = *system.scalar_matrices();
-      NodeMap R(w.rhs.data(), n / 3, 3);
-      R.noalias() -= scalar.stiffness * ConstNodeMap(w.q_iter.data(), n / 3, 3);
-      if (scalar.damping.nonZeros() > 0) {
-        R.noalias() -= scalar.damping * ConstNodeMap(w.v_iter.data(), n / 3, 3);
-      }
-      if (k > 0) {
-        R.noalias() -= scalar.mass * ConstNodeMap(w.a.data(), n / 3, 3);
-      }
-    } else {
-      system.add_internal_forces(w.q_iter, w.rhs);
-      if (matrices->damping.nonZeros() > 0) {
-        w.rhs.noalias() -= matrices->damping * w.v_iter;
-      }
-      if (k > 0 || warm_start) {
-        w.rhs.noalias() -= matrices->mass * w.a;
+    for (const auto& block : blocks) {
+      const Eigen::Index vo = block->velocity_offset;
+      const Eigen::Index vc = block->velocity_count;
+      if (block->kronecker) {
+        const ModelMatrices& scalar = *system.model(block->model).scalar_matrices();
+        const Eigen::Index nodes = vc / 3;
+        NodeMap R(w.rhs.data() + vo, nodes, 3);
+        R.noalias() -=
+            scalar.stiffness * ConstNodeMap(w.q_iter.data() + block->coordinate_offset, nodes, 3);
+        if (scalar.damping.nonZeros() > 0) {
+          R.noalias() -= scalar.damping * ConstNodeMap(w.v_iter.data() + vo, nodes, 3);
+        }
+        if (k > 0 || warm_start) {
+          R.noalias() -= scalar.mass * ConstNodeMap(w.a.data() + vo, nodes, 3);
+        }
+      } else {
+        system.model(block->model)
+            .add_internal_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
+                                w.rhs.segment(vo, vc));
+        const ModelMatrices& matrices = block->full_matrices(system);
+        if (matrices.damping.nonZeros() > 0) {
+          w.rhs.segment(vo, vc).noalias() -= matrices.damping * w.v_iter.segment(vo, vc);
+        }
+        if (k > 0 || warm_start) {
+          w.rhs.segment(vo, vc).noalias() -= matrices.mass * w.a.segment(vo, vc);
+        }
       }
     }
 
@@ -445,13 +547,15 @@ void Integrator::step(System& system, double dt) {
       step_system.factorization_serial = factorization_serial_;
       step_system.fixed_coordinates = &fixed;
       step_system.rhs = &w.rhs;
-      step_system.solve = [&w](const Eigen::VectorXd& r, Eigen::VectorXd& x) { w.solve(r, x); };
+      step_system.solve = [&w](const Eigen::VectorXd& r, Eigen::VectorXd& x) {
+        w.blocks.solve(r, x);
+      };
       hook_(step_system, w.delta);
       for (const int index : fixed) {
         w.delta[index] = 0.0;
       }
     } else {
-      w.solve(w.rhs, w.delta);
+      w.blocks.solve(w.rhs, w.delta);
     }
     w.a += w.delta;
     last_iterations_ = k;

@@ -16,15 +16,22 @@
 //                   a_old, coefficients beta dt^2 and gamma dt (beta = 1/4, gamma = 1/2:
 //                   average acceleration), forces at t + dt.
 //
-// Constant matrices (fixed-weight D-NURBS): A is factored once per (dt, scheme) with
-// SimplicialLDLT and every later step only back-substitutes; when every model has the
-// S (x) I_3 structure the scalar matrix is factored and x, y, z are three right-hand sides.
-// State-dependent matrices: the step is linearly implicit (A and b at the predictor), with
-// optional Newton iterations on a (matrices re-assembled at each iterate, tangent stiffness
-// K_T = -d f_int/dq as the model gives it).
+// A is block diagonal by model (the System stacks the models' M, D, K), so it is factored and
+// solved block by block, one block per model, each with SimplicialLDLT:
+//   constant blocks (fixed-weight D-NURBS, grid surfaces, snakes) are factored once per
+//   (dt, scheme) and every later solve only back-substitutes; a constant model with the
+//   S (x) I_3 structure is factored as its scalar matrix with x, y, z as three right-hand sides;
+//   state-dependent blocks (superquadrics, free-weight D-NURBS) make the step linearly implicit
+//   (the block and its part of b at the predictor) with optional Newton iterations on a (the
+//   block re-assembled and re-factored at each iterate, tangent stiffness K_T = -d f_int/dq as
+//   the model gives it); constant blocks of the same system are not touched by those.
+// The initial guess of a is the last acceleration under Newmark when some block is
+// state-dependent, zero otherwise (for every block alike, as when A was factored whole, so
+// results are those of the whole-system factorization up to rounding). The StepSystem solve hook
+// (constraints) solves block by block too.
 //
 // Fixed coordinates are eliminated: their acceleration and velocity are zero and only the free
-// rows and columns of A are solved.
+// rows and columns of each block are solved.
 
 #include <cstdint>
 #include <functional>
@@ -100,8 +107,15 @@ class Integrator {
 
   /// Newton iterations done by the last step (0 for a linearly implicit step).
   int last_newton_iterations() const { return last_iterations_; }
-  /// Number of factorizations of A so far (constant matrices: one per dt and scheme).
+  /// Number of block factorizations of A so far, summed over the models' blocks: a constant
+  /// block counts one per dt and scheme (a system of one constant model: one in all), a
+  /// state-dependent block one per solve (per Newton iterate). The mass-matrix factorization of
+  /// Newmark's initial acceleration is not counted.
   int factorization_count() const { return factorization_count_; }
+  /// Factorizations of model `model`'s block of A (counted as in factorization_count()) since
+  /// the last stepped system's layout (its models) was set up; throws Error naming the index if
+  /// that system has no such model.
+  int block_factorization_count(int model) const;
 
   /// Opaque caches (factorizations and work vectors).
   struct Workspace;
