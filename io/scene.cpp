@@ -13,6 +13,7 @@
 #include "constraints/target_trajectory.h"
 #include "io/json_messages.h"
 #include "io/scene_fit.h"
+#include "io/scene_materials.h"
 #include "nurbs/error.h"
 
 namespace dnurbs {
@@ -372,14 +373,6 @@ void read_dnurbs_settings(const Reader& reader, const Json& model, const std::st
   reader.number_key(model, path, "minimum_weight", settings.minimum_weight, 0.0, true);
 }
 
-DNurbsSettings scene_dnurbs_settings(const SceneDNurbsSettings& s) {
-  DNurbsSettings settings;
-  settings.weight_mode = s.free_weights ? WeightMode::kFree : WeightMode::kFixed;
-  settings.quadrature_points = s.quadrature_points;
-  settings.minimum_weight = s.minimum_weight;
-  return settings;
-}
-
 // Reads the "fit" object of a model, if present: `dnurbs` selects the D-NURBS keys (degree,
 // spans, smoothness, iterations) or the superquadric ones (max_evaluations); `instead_of` are
 // the keys that give the shape the fit replaces.
@@ -548,13 +541,10 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
     NurbsCurve curve =
         fit ? fitted(reader, path,
                      [&] {
-                       DNurbsCurveMaterial material;
-                       material.mass_density = mass_density;
-                       material.damping_density = damping_density;
-                       material.tension = tension;
-                       material.rigidity = rigidity;
-                       return fit_scene_curve(fit_points(reader, path, *fit), *fit, material,
-                                              scene_dnurbs_settings(settings));
+                       return fit_scene_curve(
+                           fit_points(reader, path, *fit), *fit,
+                           dnurbs_curve_material(mass_density, damping_density, tension, rigidity),
+                           dnurbs_settings(settings));
                      })
             : read_shape<NurbsCurve>(reader, value, path, file, "nurbs_curve");
     model.spec = SceneDNurbsCurve{std::move(curve), std::move(file), mass_density, damping_density,
@@ -579,16 +569,10 @@ SceneModel read_model(const Reader& reader, const Json& value, const std::string
     NurbsSurface surface =
         fit ? fitted(reader, path,
                      [&] {
-                       DNurbsSurfaceMaterial fit_material;
-                       fit_material.mass_density = mass_density;
-                       fit_material.damping_density = damping_density;
-                       fit_material.a10 = stiffness(0);
-                       fit_material.a01 = stiffness(1);
-                       fit_material.b20 = stiffness(2);
-                       fit_material.b11 = stiffness(3);
-                       fit_material.b02 = stiffness(4);
-                       return fit_scene_surface(fit_points(reader, path, *fit), *fit, fit_material,
-                                                scene_dnurbs_settings(settings));
+                       return fit_scene_surface(
+                           fit_points(reader, path, *fit), *fit,
+                           dnurbs_surface_material(mass_density, damping_density, stiffness),
+                           dnurbs_settings(settings));
                      })
             : read_shape<NurbsSurface>(reader, value, path, file, "nurbs_surface");
     model.spec =

@@ -23,6 +23,7 @@
 #include "dynamics/pde_surface.h"
 #include "dynamics/snake.h"
 #include "dynamics/terzopoulos_surface.h"
+#include "io/scene_materials.h"
 #include "surface/grid.h"
 #include "surface/node_chain.h"
 #include "surface/tessellation.h"
@@ -45,14 +46,6 @@ std::string indexed(const char* list, size_t i) {
   text += ": ";
   text += message;
   throw Error(text);
-}
-
-DNurbsSettings dnurbs_settings(const SceneDNurbsSettings& s) {
-  DNurbsSettings settings;
-  settings.weight_mode = s.free_weights ? WeightMode::kFree : WeightMode::kFixed;
-  settings.quadrature_points = s.quadrature_points;
-  settings.minimum_weight = s.minimum_weight;
-  return settings;
 }
 
 // A schedule as a function of time (the spline is built once)
@@ -119,23 +112,16 @@ void fix_points(Model& model, const std::vector<int>& points) {
 std::unique_ptr<Model> build_model(const SceneModel& spec) {
   std::unique_ptr<Model> model;
   if (const auto* c = std::get_if<SceneDNurbsCurve>(&spec.spec)) {
-    DNurbsCurveMaterial material;
-    material.mass_density = c->mass_density;
-    material.damping_density = c->damping_density;
-    material.tension = c->tension;
-    material.rigidity = c->rigidity;
-    model = std::make_unique<DNurbsCurve>(c->curve, material, dnurbs_settings(c->settings));
+    model = std::make_unique<DNurbsCurve>(
+        c->curve,
+        dnurbs_curve_material(c->mass_density, c->damping_density, c->tension, c->rigidity),
+        dnurbs_settings(c->settings));
   } else if (const auto* s = std::get_if<SceneDNurbsSurface>(&spec.spec)) {
-    DNurbsSurfaceMaterial material;
-    material.mass_density = s->mass_density;
-    material.damping_density = s->damping_density;
-    material.a10 = s->a10;
-    material.a01 = s->a01;
-    material.b20 = s->b20;
-    material.b11 = s->b11;
-    material.b02 = s->b02;
-    auto surface =
-        std::make_unique<DNurbsSurface>(s->surface, material, dnurbs_settings(s->settings));
+    const Eigen::Matrix<double, 5, 1> stiffness =
+        (Eigen::Matrix<double, 5, 1>() << s->a10, s->a01, s->b20, s->b11, s->b02).finished();
+    auto surface = std::make_unique<DNurbsSurface>(
+        s->surface, dnurbs_surface_material(s->mass_density, s->damping_density, stiffness),
+        dnurbs_settings(s->settings));
     if (spec.boundary.clamp_border) {
       surface->fix_border();
     }

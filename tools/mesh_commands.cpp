@@ -86,14 +86,16 @@ TriangleMesh export_adaptive_mesh(const NurbsSurface& shape, double max_error,
   constexpr int kBaseCells = 4;
   constexpr int kMaxLevel = 16;
   const ParametricSurface surface = parametric_surface(shape);
-  RestrictedMesh adaptive(surface, kBaseCells, kBaseCells);
-  if (max_error > 0.0) {
-    adaptive = refine_to_surface_error_from_best_base(surface, max_error, kBaseCells, kBaseCells,
-                                                      kMaxLevel);
-  } else {
-    adaptive.refine(normal_angle_criterion(max_angle_degrees * std::numbers::pi / 180.0),
-                    kMaxLevel);
-  }
+  auto refined = [&] {
+    if (max_error > 0.0) {
+      return refine_to_surface_error_from_best_base(surface, max_error, kBaseCells, kBaseCells,
+                                                    kMaxLevel);
+    }
+    RestrictedMesh mesh(surface, kBaseCells, kBaseCells);
+    mesh.refine(normal_angle_criterion(max_angle_degrees * std::numbers::pi / 180.0), kMaxLevel);
+    return mesh;
+  };
+  const RestrictedMesh adaptive = refined();
   const SurfaceError error = mesh_surface_error(adaptive, kDefaultErrorSampleOrder);
   TriangleMesh mesh = adaptive.to_triangle_mesh(name);
   out << "adaptive (" << (max_error > 0.0 ? "surface error" : "normals")

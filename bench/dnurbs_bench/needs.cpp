@@ -47,7 +47,7 @@ void run_needs(const BenchOptions& options, BoundChecks& checks) {
   };
 
   // Fixed against free weights, same membrane. Free weights are light coordinates: dt = 1e-5
-  // (dynamics_step_bench), a blown-up step restarts (counted).
+  // (their light weight modes), a blown-up step restarts (counted).
   {
     const int side = options.quick ? 6 : 12;
     System fixed(clamped_membrane(side, WeightMode::kFixed, 0.1));

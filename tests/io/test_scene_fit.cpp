@@ -16,6 +16,7 @@
 #include "io/scene_simulation.h"
 #include "io/shape_file.h"
 #include "nurbs/error.h"
+#include "tests/common/surface_comparison.h"
 
 namespace dnurbs {
 namespace {
@@ -40,31 +41,6 @@ const char* const kSuperquadricFitScene = R"json({
   "run": {"steps": 3}
 })json";
 
-// Largest distance between corresponding control points of a and b, over the eight ways the
-// same surface is parametrised with the same knots (u and v reversed or swapped): the fit
-// starts over the principal axes of the points, whose signs are arbitrary.
-double control_point_distance(const NurbsSurface& a, const NurbsSurface& b) {
-  const int n = a.control_point_count_u();
-  double best = std::numeric_limits<double>::infinity();
-  for (int symmetry = 0; symmetry < 8; ++symmetry) {
-    double worst = 0.0;
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        int bi = (symmetry & 1) != 0 ? n - 1 - i : i;
-        int bj = (symmetry & 2) != 0 ? n - 1 - j : j;
-        if ((symmetry & 4) != 0) {
-          std::swap(bi, bj);
-        }
-        worst = std::max(worst, (a.control_points().row(a.control_point_index(i, j)) -
-                                 b.control_points().row(b.control_point_index(bi, bj)))
-                                    .norm());
-      }
-    }
-    best = std::min(best, worst);
-  }
-  return best;
-}
-
 TEST(SceneFit, FittedSurfaceReproducesTheSampledSurface) {
   const Scene scene = parse_scene_json(kSurfaceFitScene, "fit.json", kData);
   const auto& spec = std::get<SceneDNurbsSurface>(scene.models[0].spec);
@@ -76,7 +52,7 @@ TEST(SceneFit, FittedSurfaceReproducesTheSampledSurface) {
   // The points lie on the source (same degree and knots) and the flat start over their
   // principal plane projects each to its own parameters (generate_fit_points.py), so the first
   // least-squares solve recovers the control points up to rounding
-  EXPECT_LT(control_point_distance(spec.surface, source), 1e-8);
+  EXPECT_LT(testing::control_point_distance_up_to_symmetry(spec.surface, source), 1e-8);
 }
 
 TEST(SceneFit, FittedSuperquadricReproducesTheSampledShape) {

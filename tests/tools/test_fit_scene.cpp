@@ -16,6 +16,7 @@
 
 #include "io/mesh_import.h"
 #include "io/shape_file.h"
+#include "tests/common/surface_comparison.h"
 
 namespace dnurbs {
 namespace {
@@ -24,31 +25,6 @@ using testing::fresh_directory;
 using testing::run_dnurbs;
 
 const std::filesystem::path kData = DNURBS_TEST_DATA_DIR;
-
-// Largest distance between corresponding control points of a and b over the eight
-// parametrisations of the same surface with the same knots (u, v reversed or swapped): the fit
-// starts over the principal axes of the points, whose signs are arbitrary.
-double control_point_distance(const NurbsSurface& a, const NurbsSurface& b) {
-  const int n = a.control_point_count_u();
-  double best = std::numeric_limits<double>::infinity();
-  for (int symmetry = 0; symmetry < 8; ++symmetry) {
-    double worst = 0.0;
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        int bi = (symmetry & 1) != 0 ? n - 1 - i : i;
-        int bj = (symmetry & 2) != 0 ? n - 1 - j : j;
-        if ((symmetry & 4) != 0) {
-          std::swap(bi, bj);
-        }
-        worst = std::max(worst, (a.control_points().row(a.control_point_index(i, j)) -
-                                 b.control_points().row(b.control_point_index(bi, bj)))
-                                    .norm());
-      }
-    }
-    best = std::min(best, worst);
-  }
-  return best;
-}
 
 TEST(FitScene, RunWritesTheFittedShapeAndItsMesh) {
   const auto directory = fresh_directory("fit_scene");
@@ -69,7 +45,8 @@ TEST(FitScene, RunWritesTheFittedShapeAndItsMesh) {
   ASSERT_TRUE(std::holds_alternative<NurbsSurface>(written));
   // The points lie on the source with the same degree and knots: the fit recovers it to
   // rounding (1e-15 measured), and three steps at rest do not move it
-  EXPECT_LT(control_point_distance(std::get<NurbsSurface>(written), std::get<NurbsSurface>(source)),
+  EXPECT_LT(testing::control_point_distance_up_to_symmetry(std::get<NurbsSurface>(written),
+                                                           std::get<NurbsSurface>(source)),
             1e-8);
   std::filesystem::remove_all(directory);
 }
