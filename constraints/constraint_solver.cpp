@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -9,7 +9,7 @@
 #include "dynamics/dnurbs_curve.h"
 #include "dynamics/dnurbs_surface.h"
 #include "nurbs/closest_point.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/jacobian.h"
 
 namespace dnurbs {

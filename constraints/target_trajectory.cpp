@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

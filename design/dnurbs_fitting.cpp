@@ -9,7 +9,7 @@
 
 #include "design/point_set.h"
 #include "nurbs/closest_point.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "dynamics/deformable_superquadric_model.h"
 #include "dynamics/dnurbs_model.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

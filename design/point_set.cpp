@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -11,7 +11,7 @@
 #include <nlopt.hpp>
 
 #include "design/point_set.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <utility>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
 #include "surface/signed_power.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {

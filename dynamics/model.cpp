@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

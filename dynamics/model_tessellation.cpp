@@ -10,7 +10,7 @@
 #include "dynamics/pde_surface.h"
 #include "dynamics/snake.h"
 #include "dynamics/terzopoulos_surface.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/adaptive_tessellation.h"
 #include "surface/parametric_surface_tessellation.h"
 #include "surface/restricted_mesh.h"

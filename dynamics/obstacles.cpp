@@ -6,7 +6,7 @@
 #include <limits>
 #include <utility>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <utility>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/grid_difference_operators.h"
 
 namespace dnurbs {

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "nurbs/basis_functions.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {

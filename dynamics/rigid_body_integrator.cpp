@@ -9,7 +9,7 @@
 #include <Eigen/LU>
 
 #include "dynamics/deformable_superquadric_model.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

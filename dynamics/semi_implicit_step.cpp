@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "dynamics/terzopoulos_surface.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/SparseCholesky>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

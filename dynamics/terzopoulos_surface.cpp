@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "io/atomic_write.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

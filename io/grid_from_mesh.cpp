@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "io/mesh_import.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -13,7 +13,7 @@
 #include <assimp/Exporter.hpp>
 
 #include "io/atomic_write.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

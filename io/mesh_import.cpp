@@ -6,7 +6,7 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -8,7 +8,7 @@
 #include <system_error>
 
 #include "io/atomic_write.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

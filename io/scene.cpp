@@ -14,7 +14,7 @@
 #include "io/json_messages.h"
 #include "io/scene_fit.h"
 #include "io/scene_materials.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

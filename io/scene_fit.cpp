@@ -12,7 +12,7 @@
 #include "design/point_set.h"
 #include "design/superquadric_fitting.h"
 #include "io/mesh_import.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

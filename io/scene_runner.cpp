@@ -8,7 +8,7 @@
 #include "io/csv_log.h"
 #include "io/mesh_export.h"
 #include "io/shape_file.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -16,7 +16,7 @@
 #include "dynamics/system.h"
 #include "io/checkpoint.h"
 #include "io/scene.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/triangle_mesh.h"
 
 namespace dnurbs {

@@ -12,7 +12,7 @@
 
 #include "io/atomic_write.h"
 #include "io/json_messages.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

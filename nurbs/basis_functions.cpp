@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

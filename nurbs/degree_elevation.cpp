@@ -7,7 +7,7 @@
 #include <Eigen/LU>
 
 #include "nurbs/basis_functions.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

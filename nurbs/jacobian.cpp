@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

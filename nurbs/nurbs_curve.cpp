@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/rational_validation.h"
 
 namespace dnurbs {

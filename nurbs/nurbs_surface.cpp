@@ -5,7 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/rational_validation.h"
 
 namespace dnurbs {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -4,7 +4,7 @@
 #include <array>
 
 #include "nurbs/basis_functions.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

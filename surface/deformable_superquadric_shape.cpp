@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/signed_power.h"
 
 namespace dnurbs {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {

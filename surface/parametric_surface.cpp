@@ -5,7 +5,7 @@
 #include <numbers>
 #include <utility>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

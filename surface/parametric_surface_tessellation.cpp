@@ -3,7 +3,7 @@
 #include <utility>
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/parametric_surface_mesh_builder.h"
 
 namespace dnurbs {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <utility>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/parametric_surface_mesh_builder.h"
 
 namespace dnurbs {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "tools/command_line.h"
 #include "tools/design_command.h"
 #include "tools/eval_command.h"

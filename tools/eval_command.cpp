@@ -4,7 +4,7 @@
 #include <variant>
 
 #include "io/shape_file.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

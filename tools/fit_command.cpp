@@ -13,7 +13,7 @@
 #include "io/mesh_export.h"
 #include "io/scene_fit.h"
 #include "io/shape_file.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/parametric_surface.h"
 #include "surface/parametric_surface_tessellation.h"
 #include "surface/tessellation.h"

@@ -12,7 +12,7 @@
 #include "io/mesh_export.h"
 #include "io/preview.h"
 #include "io/shape_file.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/adaptive_tessellation.h"
 #include "surface/tessellation.h"
 #include "tools/command_line.h"

@@ -11,7 +11,7 @@
 #include "io/scene.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "tools/command_line.h"
 #include "tools/mesh_commands.h"
 

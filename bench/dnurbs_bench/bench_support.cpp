@@ -7,7 +7,7 @@
 
 #include <Eigen/SparseCholesky>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs::bench {
 

@@ -9,7 +9,7 @@
 
 #include "bench_scenes.h"
 #include "dynamics/forces.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "step_timing.h"
 
 namespace dnurbs::bench {

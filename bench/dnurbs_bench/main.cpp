@@ -13,7 +13,7 @@
 #include "bench_support.h"
 #include "machine.h"
 #include "needs.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "scaling.h"
 #include "work_precision.h"
 

@@ -14,7 +14,7 @@
 #include "constraints/point_constraints.h"
 #include "dynamics/integrator.h"
 #include "dynamics/rigid_body_integrator.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs::bench {
 

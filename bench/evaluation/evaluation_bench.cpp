@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/nurbs_surface.h"
 #include "nurbs/span_cached_surface_evaluator.h"
 

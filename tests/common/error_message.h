@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs::testing {
 

@@ -8,7 +8,7 @@
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
 #include "constraints/surface_constraints.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

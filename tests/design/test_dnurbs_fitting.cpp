@@ -10,7 +10,7 @@
 
 #include "design/point_set.h"
 #include "io/mesh_import.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "tests/design/design_test_helpers.h"
 
 namespace dnurbs {

@@ -7,7 +7,7 @@
 #include "constraints/point_constraints.h"
 #include "dynamics/deformable_superquadric_model.h"
 #include "dynamics/static_equilibrium.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "tests/design/design_test_helpers.h"
 
 namespace dnurbs {

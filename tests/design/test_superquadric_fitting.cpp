@@ -11,7 +11,7 @@
 
 #include "design/point_set.h"
 #include "io/mesh_import.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -13,7 +13,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "dynamics_test_helpers.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -17,7 +17,7 @@
 #include "dynamics/forces.h"
 #include "dynamics/integrator.h"
 #include "dynamics_test_helpers.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {

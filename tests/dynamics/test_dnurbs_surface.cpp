@@ -15,7 +15,7 @@
 #include "dynamics/integrator.h"
 #include "dynamics/static_equilibrium.h"
 #include "dynamics_test_helpers.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {

@@ -16,7 +16,7 @@
 #include "dynamics/dnurbs_curve.h"
 #include "dynamics/forces.h"
 #include "dynamics_test_helpers.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -12,7 +12,7 @@
 #include "dynamics/static_equilibrium.h"
 #include "dynamics/system.h"
 #include "dynamics_test_helpers.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/knot_vector.h"
 
 namespace dnurbs {

@@ -11,7 +11,7 @@
 #include "dynamics/deformable_superquadric_model.h"
 #include "dynamics/dnurbs_curve.h"
 #include "dynamics/dnurbs_surface.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/parametric_surface_tessellation.h"
 

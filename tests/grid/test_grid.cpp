@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/grid_difference_operators.h"
 #include "surface/node_chain.h"
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "dynamics/terzopoulos_surface.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/grid.h"
 
 namespace dnurbs {

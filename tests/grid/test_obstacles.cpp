@@ -11,7 +11,7 @@
 #include "dynamics/system.h"
 #include "dynamics/terzopoulos_surface.h"
 #include "grid_scenes.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

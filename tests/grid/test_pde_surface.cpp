@@ -11,7 +11,7 @@
 #include "dynamics/forces.h"
 #include "dynamics/integrator.h"
 #include "dynamics/system.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

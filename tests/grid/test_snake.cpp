@@ -10,7 +10,7 @@
 #include "dynamics/integrator.h"
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

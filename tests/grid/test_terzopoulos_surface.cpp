@@ -15,7 +15,7 @@
 #include "dynamics/semi_implicit_step.h"
 #include "dynamics/system.h"
 #include "grid_scenes.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "surface/triangle_mesh.h"
 
 namespace dnurbs {

@@ -11,7 +11,7 @@
 #include "dynamics/integrator.h"
 #include "dynamics/system.h"
 #include "hardcase_helpers.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/knot_vector.h"
 
 namespace dnurbs {

@@ -20,7 +20,7 @@
 #include "io/scene.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "io/mesh_export.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

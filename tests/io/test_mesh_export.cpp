@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "io/mesh_import.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
 

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/scene_simulation.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

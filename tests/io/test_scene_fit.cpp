@@ -15,7 +15,7 @@
 #include "io/scene.h"
 #include "io/scene_simulation.h"
 #include "io/shape_file.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "tests/common/surface_comparison.h"
 
 namespace dnurbs {

@@ -13,7 +13,7 @@
 #include "tests/common/error_message.h"
 #include "tests/nurbs/knot_operation_shapes.h"
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 
 namespace dnurbs {

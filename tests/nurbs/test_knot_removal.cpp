@@ -14,7 +14,7 @@
 #include "tests/common/error_message.h"
 #include "tests/nurbs/knot_operation_shapes.h"
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/knot_insertion.h"
 #include "nurbs/primitive_shapes.h"
 

@@ -9,7 +9,7 @@
 
 #include "tests/common/error_message.h"
 
-#include "nurbs/error.h"
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -6,7 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "sample_shapes.h"
 

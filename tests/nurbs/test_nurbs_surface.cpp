@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "sample_shapes.h"
 

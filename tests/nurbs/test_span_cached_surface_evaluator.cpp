@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "sample_shapes.h"
 
 namespace dnurbs {

@@ -15,7 +15,7 @@
 #include <Eigen/Dense>
 
 #include "dynamics/deformable_superquadric_model.h"
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "superquadric_test_helpers.h"
 #include "surface/signed_power.h"
 

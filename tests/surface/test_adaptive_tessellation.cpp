@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/parametric_surface.h"
 #include "surface/parametric_surface_tessellation.h"

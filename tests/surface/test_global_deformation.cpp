@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "superquadric_test_support.h"
 #include "surface/deformable_superquadric_shape.h"
 #include "surface/signed_power.h"

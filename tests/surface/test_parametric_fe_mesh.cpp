@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/SparseCholesky>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "superquadric_test_support.h"
 #include "surface/deformable_superquadric_shape.h"
 

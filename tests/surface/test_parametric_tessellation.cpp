@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/parametric_surface.h"
 #include "surface/tessellation.h"

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "superquadric_test_support.h"
 
 namespace dnurbs {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "nurbs/error.h"
+#include "core/error.h"
 #include "nurbs/primitive_shapes.h"
 
 namespace dnurbs {
