@@ -1,9 +1,10 @@
 # dnurbs_add_library(<folder> DEPENDS <targets...>)
-# Builds the library dnurbs_<folder> (alias dnurbs::<folder>) from <folder>/*.cpp; a folder with
+# Builds the library dnurbs_<folder> (alias dnurbs::<folder>) from <folder>/**/*.cpp (sub-folders
+# included); a folder with
 # no sources yet becomes an interface library. Headers install under include/dnurbs/<folder>.
 function(dnurbs_add_library folder)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.cpp")
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.cpp")
   set(target dnurbs_${folder})
   if(sources)
     add_library(${target} ${sources})
@@ -26,36 +27,40 @@ function(dnurbs_add_library folder)
           FILES_MATCHING PATTERN "*.h")
 endfunction()
 
-# dnurbs_add_test_folder(<folder> LABELS <labels...>)
-# One GoogleTest executable test_<folder> from tests/<folder>/*.cpp; one ctest test per test case,
-# each labelled with the folder's name and any extra labels.
+# dnurbs_add_test_folder(<folder> [LABELS <labels...>] [DEPENDS <targets...>])
+# One GoogleTest executable test_<folder> (slashes become underscores) from tests/<folder>/*.cpp,
+# the tests of the library folder of the same path (tests/dynamics/grid/test_snake.cpp for
+# dynamics/grid/snake.cpp); one ctest test per test case, labelled with the folder's first path
+# component and any extra labels. It links the library of that first component only, so that a
+# broken upper layer cannot hide a lower one.
 function(dnurbs_add_test_folder folder)
   cmake_parse_arguments(ARG "" "" "LABELS;DEPENDS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp")
   if(NOT sources)
     return()
   endif()
-  add_executable(test_${folder} ${sources})
-  # A layer's tests link that layer only (so a broken upper layer cannot hide a lower one).
-  if(TARGET dnurbs::${folder})
-    set(library dnurbs::${folder})
+  string(REPLACE "/" "_" name "${folder}")
+  string(REGEX REPLACE "/.*" "" layer "${folder}")
+  add_executable(test_${name} ${sources})
+  if(TARGET dnurbs::${layer})
+    set(library dnurbs::${layer})
   else()
     set(library dnurbs::dnurbs)
   endif()
-  target_link_libraries(test_${folder} PRIVATE ${library} ${ARG_DEPENDS} GTest::gtest_main GTest::gmock
+  target_link_libraries(test_${name} PRIVATE ${library} ${ARG_DEPENDS} GTest::gtest_main GTest::gmock
                         dnurbs_warnings)
-  target_compile_definitions(test_${folder} PRIVATE
+  target_compile_definitions(test_${name} PRIVATE
                              DNURBS_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data"
                              DNURBS_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  gtest_discover_tests(test_${folder} PROPERTIES LABELS ${folder} DISCOVERY_TIMEOUT 60
-                       TEST_LIST test_${folder}_TESTS)
+  gtest_discover_tests(test_${name} PROPERTIES LABELS ${layer} DISCOVERY_TIMEOUT 60
+                       TEST_LIST test_${name}_TESTS)
   if(ARG_LABELS)
     # gtest_discover_tests splits a list-valued LABELS property, so extra labels are set by a
     # script that ctest runs after the discovered tests are defined.
-    set(labels "${folder};${ARG_LABELS}")
-    set(script "${CMAKE_CURRENT_BINARY_DIR}/test_${folder}_labels.cmake")
+    set(labels "${layer};${ARG_LABELS}")
+    set(script "${CMAKE_CURRENT_BINARY_DIR}/test_${name}_labels.cmake")
     file(WRITE "${script}"
-         "foreach(test IN LISTS test_${folder}_TESTS)\n"
+         "foreach(test IN LISTS test_${name}_TESTS)\n"
          "  set_tests_properties(\"\${test}\" PROPERTIES LABELS \"${labels}\")\n"
          "endforeach()\n")
     set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${script}")

@@ -39,7 +39,7 @@
 #include <Eigen/SparseCore>
 
 #include "constraints/constraint.h"
-#include "dynamics/integrator.h"
+#include "dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 

@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 
 #include "constraints/point_constraints.h"
-#include "dynamics/dnurbs_curve.h"
-#include "dynamics/dnurbs_surface.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "nurbs/closest_point.h"
 #include "core/error.h"
 #include "nurbs/jacobian.h"

@@ -14,8 +14,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs_curve.h"
-#include "dynamics/dnurbs_surface.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 
 namespace dnurbs {
 

@@ -7,8 +7,8 @@
 
 #include <nlopt.hpp>
 
-#include "dynamics/deformable_superquadric_model.h"
-#include "dynamics/dnurbs_model.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dynamics/dnurbs/dnurbs_model.h"
 #include "core/error.h"
 
 namespace dnurbs {

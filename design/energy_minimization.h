@@ -19,7 +19,7 @@
 #include <Eigen/Core>
 
 #include "constraints/constraint_solver.h"
-#include "dynamics/system.h"
+#include "dynamics/core/system.h"
 
 namespace dnurbs {
 

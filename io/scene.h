@@ -45,7 +45,7 @@ struct ScalarSchedule {
 struct SceneBoundary {
   bool clamp_border = false;      ///< D-NURBS surfaces and Terzopoulos surfaces only
   std::vector<int> fixed_points;  ///< control points (D-NURBS) or nodes (grids, snakes)
-  /// D-NURBS only, >= 0: local sculpting (dynamics/local_sculpting.h), the control points
+  /// D-NURBS only, >= 0: local sculpting (dynamics/dnurbs/local_sculpting.h), the control points
   /// outside the support of the model's forces and constraints grown by this many rings are
   /// fixed; -1: off
   int local_sculpting_margin = -1;
@@ -185,7 +185,7 @@ struct SceneModel {
 /// The model's "type" string.
 std::string scene_model_type(const SceneModel& model);
 
-/// Applied forces (dynamics/forces.h). Every force acts while start <= t < end.
+/// Applied forces (dynamics/core/forces.h). Every force acts while start <= t < end.
 struct ScenePointForce {
   int model = 0;
   Eigen::Vector2d at = Eigen::Vector2d::Zero();

@@ -4,9 +4,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs_curve.h"
-#include "dynamics/dnurbs_model.h"
-#include "dynamics/dnurbs_surface.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dynamics/dnurbs/dnurbs_model.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "io/scene.h"
 
 namespace dnurbs {

@@ -12,8 +12,8 @@
 #include <Eigen/Core>
 
 #include "constraints/constraint_solver.h"
-#include "dynamics/integrator.h"
-#include "dynamics/system.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/core/system.h"
 #include "io/checkpoint.h"
 #include "io/scene.h"
 #include "core/error.h"

@@ -5,8 +5,8 @@
 
 #include <Eigen/Geometry>
 
-#include "dynamics/forces.h"
-#include "dynamics/terzopoulos_surface.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/grid/terzopoulos_surface.h"
 #include "surface/grid.h"
 
 namespace dnurbs::bench {

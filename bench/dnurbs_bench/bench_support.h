@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/system.h"
+#include "dynamics/core/system.h"
 
 namespace dnurbs::bench {
 

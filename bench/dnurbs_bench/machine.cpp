@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "bench_scenes.h"
-#include "dynamics/forces.h"
+#include "dynamics/core/forces.h"
 #include "core/error.h"
 #include "step_timing.h"
 

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "bench_scenes.h"
-#include "dynamics/forces.h"
-#include "dynamics/local_sculpting.h"
-#include "dynamics/static_equilibrium.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/dnurbs/local_sculpting.h"
+#include "dynamics/integrators/static_equilibrium.h"
 #include "step_timing.h"
 
 namespace dnurbs::bench {

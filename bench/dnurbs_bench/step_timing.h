@@ -3,8 +3,8 @@
 
 #include <functional>
 
-#include "dynamics/integrator.h"
-#include "dynamics/system.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/core/system.h"
 
 namespace dnurbs::bench {
 

@@ -12,8 +12,8 @@
 #include "bench_scenes.h"
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
-#include "dynamics/integrator.h"
-#include "dynamics/rigid_body_integrator.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/integrators/rigid_body_integrator.h"
 #include "core/error.h"
 
 namespace dnurbs::bench {

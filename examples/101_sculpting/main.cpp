@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "dynamics/dnurbs_surface.h"
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
-#include "dynamics/model_tessellation.h"
-#include "dynamics/system.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/core/model_tessellation.h"
+#include "dynamics/core/system.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "nurbs/knot_vector.h"

@@ -12,9 +12,9 @@
 
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
-#include "dynamics/deformable_superquadric_model.h"
-#include "dynamics/forces.h"
-#include "dynamics/model_tessellation.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/core/model_tessellation.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 

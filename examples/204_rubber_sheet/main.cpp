@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "dynamics/forces.h"
-#include "dynamics/semi_implicit_step.h"
-#include "dynamics/system.h"
-#include "dynamics/terzopoulos_surface.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/semi_implicit_step.h"
+#include "dynamics/core/system.h"
+#include "dynamics/grid/terzopoulos_surface.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

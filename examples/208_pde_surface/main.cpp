@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <numbers>
 
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
-#include "dynamics/pde_surface.h"
-#include "dynamics/system.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/grid/pde_surface.h"
+#include "dynamics/core/system.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

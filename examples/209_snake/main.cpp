@@ -9,9 +9,9 @@
 #include <fstream>
 #include <numbers>
 
-#include "dynamics/integrator.h"
-#include "dynamics/snake.h"
-#include "dynamics/system.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/grid/snake.h"
+#include "dynamics/core/system.h"
 #include "examples/example_arguments.h"
 
 int main(int argc, char** argv) {

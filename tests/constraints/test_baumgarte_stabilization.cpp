@@ -4,12 +4,12 @@
 
 #include <gtest/gtest.h>
 
-#include "constraint_test_scenes.h"
+#include "tests/common/constraint_test_scenes.h"
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
 #include "constraints/surface_constraints.h"
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 namespace {

@@ -11,11 +11,11 @@
 
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
-#include "dynamics/deformable_superquadric_model.h"
-#include "dynamics/dnurbs_surface.h"
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
-#include "dynamics/system.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/core/system.h"
 #include "nurbs/knot_vector.h"
 
 namespace dnurbs {

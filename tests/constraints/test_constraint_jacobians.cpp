@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "constraint_test_scenes.h"
+#include "tests/common/constraint_test_scenes.h"
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
 #include "constraints/surface_constraints.h"

@@ -10,9 +10,9 @@
 
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
-#include "dynamics/deformable_superquadric_model.h"
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 namespace {

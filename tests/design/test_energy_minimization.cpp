@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "constraints/point_constraints.h"
-#include "dynamics/deformable_superquadric_model.h"
-#include "dynamics/static_equilibrium.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dynamics/integrators/static_equilibrium.h"
 #include "core/error.h"
 #include "tests/design/design_test_helpers.h"
 

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "dynamics/system.h"
+#include "dynamics/core/system.h"
 #include "nurbs/knot_vector.h"
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"

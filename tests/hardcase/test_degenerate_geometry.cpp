@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/dnurbs_curve.h"
-#include "dynamics/integrator.h"
-#include "dynamics/system.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/core/system.h"
 #include "hardcase_helpers.h"
 #include "core/error.h"
 #include "nurbs/knot_vector.h"

@@ -14,12 +14,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseLU>
 
-#include "dynamics/dnurbs_curve.h"
-#include "dynamics/dnurbs_surface.h"
-#include "dynamics/integrator.h"
-#include "dynamics/semi_implicit_step.h"
-#include "dynamics/system.h"
-#include "dynamics/terzopoulos_surface.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/integrators/semi_implicit_step.h"
+#include "dynamics/core/system.h"
+#include "dynamics/grid/terzopoulos_surface.h"
 #include "hardcase_helpers.h"
 #include "surface/grid.h"
 

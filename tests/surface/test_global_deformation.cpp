@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "superquadric_test_support.h"
+#include "tests/common/superquadric_test_support.h"
 #include "surface/deformable_superquadric_shape.h"
 #include "surface/signed_power.h"
 

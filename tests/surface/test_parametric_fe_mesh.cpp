@@ -8,7 +8,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "core/error.h"
-#include "superquadric_test_support.h"
+#include "tests/common/superquadric_test_support.h"
 #include "surface/deformable_superquadric_shape.h"
 
 namespace dnurbs {

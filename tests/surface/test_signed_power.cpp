@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "superquadric_test_support.h"
+#include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {
 namespace {

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "superquadric_test_support.h"
+#include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {
 namespace {

@@ -1,0 +1,106 @@
+#include "dynamics/core/forces.h"
+
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+
+namespace dnurbs {
+
+Force point_force(const Eigen::Vector2d& u, VectorOfTime force) {
+  if (!force) {
+    throw make_error("point force at u = (", u.x(), ", ", u.y(), ") has no force function");
+  }
+  return [u, force = std::move(force)](const Model& model, double t, ConstVectorRef q,
+                                       ConstVectorRef /*qd*/, VectorRef generalized) {
+    model.add_point_force(q, u, force(t), generalized);
+  };
+}
+
+Force point_force(const Eigen::Vector2d& u, const Eigen::Vector3d& force) {
+  return point_force(u, [force](double) { return force; });
+}
+
+Force spring_force(const Eigen::Vector2d& u, VectorOfTime target, double stiffness) {
+  if (!(stiffness >= 0.0) || !std::isfinite(stiffness)) {
+    throw make_error("spring stiffness ", stiffness, " is not a non-negative finite number");
+  }
+  if (!target) {
+    throw make_error("spring at u = (", u.x(), ", ", u.y(), ") has no target function");
+  }
+  return [u, target = std::move(target), stiffness](const Model& model, double t, ConstVectorRef q,
+                                                    ConstVectorRef /*qd*/, VectorRef generalized) {
+    const Eigen::Vector3d f = stiffness * (target(t) - model.position(q, u));
+    model.add_point_force(q, u, f, generalized);
+  };
+}
+
+Force control_point_force(std::vector<int> control_points, VectorOfTime force) {
+  if (!force) {
+    throw make_error("control point force has no force function");
+  }
+  return [points = std::move(control_points), force = std::move(force)](
+             const Model& model, double t, ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
+             VectorRef generalized) {
+    const Eigen::Vector3d f = force(t);
+    for (const int i : points) {
+      generalized.segment<3>(model.control_point_offset(i)) += f;
+    }
+  };
+}
+
+Force coordinate_force(std::vector<int> coordinates, ScalarOfTime value) {
+  if (!value) {
+    throw make_error("coordinate force has no value function");
+  }
+  return [indices = std::move(coordinates), value = std::move(value)](
+             const Model& model, double t, ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
+             VectorRef generalized) {
+    const double f = value(t);
+    for (const int i : indices) {
+      if (i < 0 || i >= model.velocity_count()) {
+        throw make_error("coordinate force index ", i, " is outside 0..",
+                         model.velocity_count() - 1);
+      }
+      generalized[i] += f;
+    }
+  };
+}
+
+Force gravity(const Eigen::Vector3d& acceleration) {
+  if (!acceleration.allFinite()) {
+    throw make_error("gravity (", acceleration.x(), ", ", acceleration.y(), ", ", acceleration.z(),
+                     ") is not finite");
+  }
+  return [acceleration](const Model& model, double /*t*/, ConstVectorRef q, ConstVectorRef /*qd*/,
+                        VectorRef generalized) {
+    model.add_distributed_force(
+        q,
+        [&acceleration](const MaterialSample& sample) -> Eigen::Vector3d {
+          return sample.mass_density * acceleration;
+        },
+        generalized);
+  };
+}
+
+Force pressure(ScalarOfTime pressure) {
+  if (!pressure) {
+    throw make_error("pressure force has no pressure function");
+  }
+  return [pressure = std::move(pressure)](const Model& model, double t, ConstVectorRef q,
+                                          ConstVectorRef /*qd*/, VectorRef generalized) {
+    const double p = pressure(t);
+    model.add_distributed_force(
+        q,
+        [p](const MaterialSample& sample) -> Eigen::Vector3d {
+          return p * sample.tangent_u.cross(sample.tangent_v);
+        },
+        generalized);
+  };
+}
+
+Force pressure(double value) {
+  return pressure([value](double) { return value; });
+}
+
+}  // namespace dnurbs

@@ -1,0 +1,47 @@
+#pragma once
+// Applied forces for System::add_force. Every generalized force goes through L^T (seed 001,
+// below eq 1.26: f_q = integral J^T f(u, t) du): a point force f at u gives L(u)^T f, a force
+// density gives integral L^T f. Forces that depend on the state are explicit in the integrators
+// (their derivatives are not in the effective matrix).
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "dynamics/core/system.h"
+
+namespace dnurbs {
+
+/// A 3-vector function of time.
+using VectorOfTime = std::function<Eigen::Vector3d(double)>;
+/// A scalar function of time.
+using ScalarOfTime = std::function<double(double)>;
+
+/// The force f(t) acting at the material point u: L(u)^T f(t).
+Force point_force(const Eigen::Vector2d& u, VectorOfTime force);
+Force point_force(const Eigen::Vector2d& u, const Eigen::Vector3d& force);
+
+/// A "mouse spring" of stiffness k from the material point u to a target that moves in time:
+/// L(u)^T k (target(t) - x(u)). Throws Error if k is negative or not finite.
+Force spring_force(const Eigen::Vector2d& u, VectorOfTime target, double stiffness);
+
+/// The force f(t) added directly to the position coordinates of each listed control point
+/// (Model::control_point_offset; indices are checked when the force is first applied).
+Force control_point_force(std::vector<int> control_points, VectorOfTime force);
+
+/// A generalized force value(t) added directly to each listed velocity-space coordinate (e.g.
+/// a D-NURBS weight, DNurbsModel::weight_offset).
+Force coordinate_force(std::vector<int> coordinates, ScalarOfTime value);
+
+/// Gravity: the density mu(u) g per unit parametric measure, integral L^T mu g.
+Force gravity(const Eigen::Vector3d& acceleration);
+
+/// Pressure p(t) along the surface normal (inflation): force per unit area p n, i.e.
+/// p (x_u x x_v) per unit parametric area; integral L^T p (x_u x x_v) du dv. For a closed
+/// surface this is p dV/dq (V the enclosed volume). Curves have x_v = 0: no force.
+Force pressure(ScalarOfTime pressure);
+Force pressure(double pressure);
+
+}  // namespace dnurbs

@@ -1,0 +1,65 @@
+#include "dynamics/core/model.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+
+namespace dnurbs {
+
+Eigen::Vector3d Model::jacobian_rate_times_velocity(ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
+                                                    const Eigen::Vector2d& /*u*/) const {
+  return Eigen::Vector3d::Zero();
+}
+
+void Model::add_internal_force(ConstVectorRef q, VectorRef force) const {
+  ModelMatrices matrices;
+  const ModelMatrices* used = constant_matrices();
+  if (used == nullptr) {
+    assemble_matrices(q, matrices);
+    used = &matrices;
+  }
+  force.noalias() -= used->stiffness * q;
+}
+
+double Model::potential_energy(ConstVectorRef q) const {
+  ModelMatrices matrices;
+  const ModelMatrices* used = constant_matrices();
+  if (used == nullptr) {
+    assemble_matrices(q, matrices);
+    used = &matrices;
+  }
+  return 0.5 * q.dot(used->stiffness * q);
+}
+
+void Model::add_inertial_force(ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
+                               VectorRef /*force*/) const {}
+
+void Model::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
+                            VectorRef force) const {
+  force += position_jacobian(q, u).transpose() * f;
+}
+
+void Model::advance_coordinates(ConstVectorRef q, ConstVectorRef dv,
+                                Eigen::Ref<Eigen::VectorXd> q_out) const {
+  q_out = q + dv;
+}
+
+void Model::project_state(Eigen::Ref<Eigen::VectorXd> /*q*/,
+                          Eigen::Ref<Eigen::VectorXd> /*qd*/) const {}
+
+int Model::control_point_offset(int i) const {
+  throw make_error("control point ", i, " requested from a model without control points");
+}
+
+void Model::fix_coordinate(int index) {
+  if (index < 0 || index >= velocity_count()) {
+    throw make_error("fixed coordinate index ", index, " is outside 0..", velocity_count() - 1);
+  }
+  const auto position =
+      std::lower_bound(fixed_coordinates_.begin(), fixed_coordinates_.end(), index);
+  if (position == fixed_coordinates_.end() || *position != index) {
+    fixed_coordinates_.insert(position, index);
+  }
+}
+
+}  // namespace dnurbs

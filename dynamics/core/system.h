@@ -1,0 +1,131 @@
+#pragma once
+// The multi-model system (DESIGN.md, "The Model contract"): models are concatenated, their
+// coordinates stacked and their matrices placed block-diagonally; the System owns the state
+// (q, qd, t) and the applied forces. Integrators, forces and (later) constraints see only this
+// class and the Model contract.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynamics/core/model.h"
+
+namespace dnurbs {
+
+/// An applied force on one model: adds its generalized force (velocity space of `model`, size
+/// model.velocity_count()) at time t and state (q, qd) into `force`.
+using Force = std::function<void(const Model& model, double time, ConstVectorRef q,
+                                 ConstVectorRef qd, VectorRef force)>;
+
+/// Several models stepped together. Stacked vectors put model 0 first; model i's coordinates are
+/// coordinates().segment(coordinate_offset(i), model(i).coordinate_count()), and likewise for
+/// velocities with velocity_offset(i). Matrices are velocity_count() by velocity_count(),
+/// block diagonal. A System is a value: copying it clones its models.
+class System {
+ public:
+  System() = default;
+  /// A system of one model.
+  explicit System(const Model& model) { add_model(model); }
+  System(const System& other);
+  System& operator=(const System& other);
+  System(System&&) noexcept = default;
+  System& operator=(System&&) noexcept = default;
+  ~System() = default;
+
+  /// Adds a copy of `model` with its initial coordinates and zero velocity; returns its index.
+  int add_model(const Model& model);
+  int model_count() const { return static_cast<int>(models_.size()); }
+  const Model& model(int i) const;
+  int coordinate_offset(int i) const;
+  int velocity_offset(int i) const;
+  int coordinate_count() const { return static_cast<int>(coordinates_.size()); }
+  int velocity_count() const { return static_cast<int>(velocities_.size()); }
+
+  // State -----------------------------------------------------------------------------------
+  double time() const { return time_; }
+  const Eigen::VectorXd& coordinates() const { return coordinates_; }
+  const Eigen::VectorXd& velocities() const { return velocities_; }
+  /// Model i's coordinates and velocities (views into the stacked state).
+  Eigen::VectorXd::ConstSegmentReturnType coordinates(int i) const;
+  Eigen::VectorXd::ConstSegmentReturnType velocities(int i) const;
+  /// Setters check sizes and finiteness (Error naming the value) and invalidate the stored
+  /// acceleration. Velocities of fixed coordinates are set to zero.
+  void set_coordinates(int i, ConstVectorRef q);
+  void set_velocities(int i, ConstVectorRef qd);
+  void set_state(ConstVectorRef q, ConstVectorRef qd, double time);
+  void set_time(double time);
+  /// Acceleration of the last step (Newmark needs it); invalid after any setter.
+  const Eigen::VectorXd& accelerations() const { return accelerations_; }
+  bool accelerations_valid() const { return accelerations_valid_; }
+  void set_accelerations(ConstVectorRef a);
+  /// For integrators: swaps in a new state (q, qd, a at `time`) without copying; the arguments
+  /// receive the old vectors. Sizes must match (checked); finiteness is the caller's duty.
+  void commit_step(Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& a, double time);
+
+  /// x(u) of model i at the current state.
+  Eigen::Vector3d position(int i, const Eigen::Vector2d& u) const;
+
+  // Forces ----------------------------------------------------------------------------------
+  /// Applies `force` to model i; returns the force's index.
+  int add_force(int i, Force force);
+  void clear_forces() { forces_.clear(); }
+  bool has_forces() const { return !forces_.empty(); }
+  /// Adds every applied force at (t, q, qd) (stacked vectors) into `force`.
+  void add_applied_forces(double time, ConstVectorRef q, ConstVectorRef qd, VectorRef force) const;
+  /// Adds every model's internal force f_int(q) into `force`.
+  void add_internal_forces(ConstVectorRef q, VectorRef force) const;
+  /// Adds every model's generalized inertial force g(q, qd) into `force`.
+  void add_inertial_forces(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const;
+
+  // Matrices --------------------------------------------------------------------------------
+  bool matrices_are_constant() const;
+  /// Block-diagonal M, D, K when every model's are constant (built once), else nullptr.
+  const ModelMatrices* constant_matrices() const;
+  /// Block-diagonal M, D, K at stacked coordinates q.
+  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const;
+  /// 3 if every model has M = S (x) I_3 structure (then scalar_matrices() is the block-diagonal
+  /// stack of the scalar matrices, nodes by nodes, node k holding velocities 3k..3k+2), else 0.
+  int kronecker_block_size() const;
+  const ModelMatrices* scalar_matrices() const;
+
+  // Coordinates and boundary conditions -----------------------------------------------------
+  /// Velocity-space indices held fixed, sorted (every model's, shifted by its offset).
+  const std::vector<int>& fixed_coordinates() const { return fixed_; }
+  void advance_coordinates(ConstVectorRef q, ConstVectorRef dv,
+                           Eigen::Ref<Eigen::VectorXd> q_out) const;
+  void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const;
+
+  // Energy ----------------------------------------------------------------------------------
+  /// (1/2) qd^T M(q) qd at the current state.
+  double kinetic_energy() const;
+  /// Sum of the models' elastic energies at the current state.
+  double potential_energy() const;
+
+  /// Changes whenever models are added (integrators refactor when it changes).
+  std::uint64_t revision() const { return revision_; }
+
+ private:
+  void rebuild_caches();
+  void check_index(int i) const;
+
+  std::vector<std::unique_ptr<Model>> models_;
+  std::vector<int> coordinate_offsets_;
+  std::vector<int> velocity_offsets_;
+  std::vector<std::pair<int, Force>> forces_;
+  std::vector<int> fixed_;
+  Eigen::VectorXd coordinates_;
+  Eigen::VectorXd velocities_;
+  Eigen::VectorXd accelerations_;
+  bool accelerations_valid_ = false;
+  double time_ = 0.0;
+  std::uint64_t revision_ = 0;
+  bool constant_ = true;
+  int kronecker_ = 0;
+  ModelMatrices constant_matrices_;
+  ModelMatrices scalar_matrices_;
+};
+
+}  // namespace dnurbs

@@ -1,0 +1,161 @@
+#pragma once
+// The D-NURBS model shared by curves and surfaces (seed 001 eqs 1.21-1.27): generalized
+// coordinates are the control points and, when freed, the weights; M, D and K are Gauss
+// quadrature sums over the non-empty knot spans (span products for surfaces) of J^T J terms.
+//
+// Fixed weights (the default): J does not depend on q, M = S_M (x) I_3 (likewise D, K), and the
+// scalar matrices are assembled once at construction. Free weights: the B-spline basis values
+// at the quadrature points are cached once (they do not depend on q) and M, D, K are
+// re-assembled from that cache at every state into a pattern sized once.
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynamics/core/material_function.h"
+#include "dynamics/core/model.h"
+#include "dynamics/core/quadrature_assembly.h"
+#include "nurbs/jacobian.h"
+#include "nurbs/knot_vector.h"
+
+namespace dnurbs {
+
+/// Settings of a D-NURBS model.
+struct DNurbsSettings {
+  /// Control points only (kFixed, q = [P_0, P_1, ...]) or control points and weights (kFree,
+  /// q = [P_0, w_0, P_1, w_1, ...]).
+  WeightMode weight_mode = WeightMode::kFixed;
+  /// Gauss points per non-empty span and direction; 0 picks p + 1 (per direction), which makes
+  /// M and D (integrand degree 2p) exact for non-rational shapes with constant densities, and
+  /// K too (integrand degree 2p - 2 and 2p - 4, p points would already do). For rational
+  /// shapes (non-uniform weights) the integrands are rational and this is an accuracy knob.
+  int quadrature_points = 0;
+  /// Free weights never go below this value (> 0): after every step the integrator projects
+  /// w_i = max(w_i, minimum_weight) and, where a weight was clamped, removes the part of its
+  /// velocity that points further down (wdot_i = max(wdot_i, 0)): an inelastic contact with the
+  /// bound, which keeps every point of the shape finite.
+  double minimum_weight = 1e-3;
+  /// Free weights only: scaling every weight by one factor leaves the shape unchanged, so M(q)
+  /// and K(q) are singular along q_gauge = [0, w_0, 0, w_1, ...] (J q_gauge = 0). With this
+  /// setting (the default) weight 0 is a fixed coordinate, which removes exactly that direction
+  /// without restricting the shape. Switch it off only when fixing some weight yourself.
+  bool fix_weight_gauge = true;
+  /// Free weights only: a constant inertia added to the diagonal of M for every weight
+  /// coordinate (default 0: exact D-NURBS). Beyond the gauge, M(q) can be singular or nearly so
+  /// along weight directions that barely move the shape (exactly singular for a straight line
+  /// with linear parametrization, ~1e-16 relative for a gently bent 25-point cubic), so light
+  /// weights accelerate without bound; a small positive value (e.g. 1e-4 mu) makes the motion
+  /// well posed. It is a constant term of M, so g and energy conservation are unaffected.
+  double weight_inertia = 0.0;
+};
+
+/// A D-NURBS curve or surface as a Model. Use DNurbsCurve or DNurbsSurface to build one.
+///
+/// Material: `mass_density` mu and `damping_density` gamma per unit parametric measure, and the
+/// stiffness coefficients k_alpha of the quantities alpha = 1..5 (x_u, x_v, x_uu, x_uv, x_vv):
+///   K = integral sum_alpha k_alpha J_alpha^T J_alpha     (seed 001 eqs 1.26 and 1.20).
+class DNurbsModel : public Model {
+ public:
+  int coordinate_count() const override { return control_point_count_ * per_control_point_; }
+  Eigen::VectorXd initial_coordinates() const override { return initial_coordinates_; }
+  int parametric_dimension() const override { return surface_ ? 2 : 1; }
+
+  Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  SparseMatrix position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  Eigen::Vector3d jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
+                                               const Eigen::Vector2d& u) const override;
+
+  bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
+  const ModelMatrices* constant_matrices() const override;
+  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const override;
+  int kronecker_block_size() const override { return mode_ == WeightMode::kFixed ? 3 : 0; }
+  const ModelMatrices* scalar_matrices() const override;
+
+  void add_internal_force(ConstVectorRef q, VectorRef force) const override;
+  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 = (1/2) q^T K(q) q.
+  double potential_energy(ConstVectorRef q) const override;
+  /// g = -integral mu J^T Jdot qd with Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot)
+  /// (free weights; zero for fixed weights).
+  void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
+  void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
+                       VectorRef force) const override;
+  void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
+                             VectorRef force) const override;
+  void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
+  int control_point_offset(int i) const override;
+
+  WeightMode weight_mode() const { return mode_; }
+  /// Number of distinct control points.
+  int control_point_count() const { return control_point_count_; }
+  double minimum_weight() const { return minimum_weight_; }
+  /// Velocity-space index of weight i (free weights only; throws Error otherwise).
+  int weight_offset(int i) const;
+  /// Fixes the position of control point i (its three position coordinates; a free weight
+  /// stays free).
+  void fix_control_point(int i);
+  /// Fixes free weight i (throws Error for fixed-weight models). With the default weight gauge
+  /// weight 0 is already fixed; fixing a second weight fixes a weight ratio, a shape constraint.
+  void fix_weight(int i);
+  /// Control points (count by 3) and weights (count) at coordinates q.
+  Eigen::MatrixX3d control_points(ConstVectorRef q) const;
+  Eigen::VectorXd weights(ConstVectorRef q) const;
+  /// The parametric measure of the domain (length of a curve's, area of a surface's).
+  double parametric_measure() const;
+
+ protected:
+  /// `knots_v` is null for curves. `stiffness` holds k_alpha for alpha = 0..5 (k_0 unused).
+  DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
+              const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights,
+              const MaterialFunction& mass_density, const MaterialFunction& damping_density,
+              const std::array<MaterialFunction, kQuantityCount>& stiffness,
+              const std::array<const char*, kQuantityCount>& stiffness_names,
+              const DNurbsSettings& settings);
+
+ private:
+  // Basis at an arbitrary parameter / at quadrature point `point` of element `element`.
+  void basis_at(const Eigen::Vector2d& u, PointBasis& basis) const;
+  void basis_at_quadrature(int element, int point, PointBasis& basis) const;
+  ControlNet control_net(ConstVectorRef q) const;
+  int points_per_element() const { return table_u_.points_per_span * table_v_.points_per_span; }
+  int element_count() const { return table_u_.span_count * table_v_.span_count; }
+  // Quadrature weight (times span lengths) and parameter of a point.
+  double quadrature_weight(int element, int point) const;
+  Eigen::Vector2d quadrature_parameter(int element, int point) const;
+  // Assembly of the scalar (fixed weights) or block (free weights) matrices at q.
+  void assemble_scalar(ModelMatrices& scalar) const;
+  void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const;
+  // Highest derivative order the stiffness needs (1 or 2; 0 without stiffness).
+  int stiffness_order() const;
+
+  // Material values at quadrature point i (element * points_per_element + point):
+  // material_[i * 8 + 0] = mu, [+1] = gamma, [+2 + alpha] = k_alpha.
+  static constexpr int kMaterialStride = 8;
+
+  bool surface_ = false;
+  WeightMode mode_ = WeightMode::kFixed;
+  int per_control_point_ = 3;
+  int control_point_count_ = 0;
+  int count_v_ = 1;  // control points along v (1 for curves)
+  double minimum_weight_ = 1e-3;
+  bool has_damping_ = false;
+  std::array<bool, kQuantityCount> has_stiffness_{};
+  KnotVector knots_u_;
+  std::vector<KnotVector> knots_v_;  // empty for curves, one entry for surfaces
+  DirectionQuadrature table_u_;
+  DirectionQuadrature table_v_;
+  std::vector<double> material_;
+  Eigen::VectorXd fixed_weights_;  // the weights when they are not coordinates
+  Eigen::VectorXd initial_coordinates_;
+  AssemblyPattern pattern_;
+  // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once.
+  ModelMatrices scalar_;
+  ModelMatrices expanded_;
+  // Free weights: the 4 x 4 block pattern, sized once, and the value index of each weight's
+  // diagonal entry in it.
+  SparseMatrix block_pattern_;
+  std::vector<int> weight_diagonal_;
+  double weight_inertia_ = 0.0;
+};
+
+}  // namespace dnurbs

@@ -1,0 +1,297 @@
+#include "dynamics/grid/pde_surface.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <utility>
+
+#include "core/error.h"
+#include "surface/grid_difference_operators.h"
+
+namespace dnurbs {
+
+namespace {
+
+using RowNodes = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+void check_coefficient(double value, const char* name, bool positive) {
+  if (!std::isfinite(value) || (positive ? !(value > 0.0) : !(value >= 0.0))) {
+    throw make_error("PDE surface ", name, " = ", value, " is not ",
+                     positive ? "positive" : "non-negative", " and finite");
+  }
+}
+
+}  // namespace
+
+PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
+                       const PdeSurfaceMaterial& material,
+                       const std::vector<DeformationRegion>& regions)
+    : grid_(grid), material_(material), rest_(rest) {
+  if (grid.nu() < 3 || grid.nv() < 3) {
+    throw make_error("PDE surface grid of ", grid.nu(), " by ", grid.nv(),
+                     " nodes is smaller than the 3 by 3 nodes it needs");
+  }
+  check_grid_positions(grid, rest, "rest position");
+  check_coefficient(material.b, "b", false);
+  check_coefficient(material.c, "c", false);
+  check_coefficient(material.d, "d", false);
+  check_coefficient(material.density, "density rho", true);
+  check_coefficient(material.damping, "damping gamma", false);
+  for (const auto& [name, value] :
+       std::array<std::pair<const char*, double>, 4>{{{"su0", material.su0},
+                                                      {"su1", material.su1},
+                                                      {"sv0", material.sv0},
+                                                      {"sv1", material.sv1}}}) {
+    if (!std::isfinite(value)) {
+      throw make_error("PDE surface boundary tangent ", name, " = ", value, " is not finite");
+    }
+  }
+  const int nu = grid.nu();
+  const int nv = grid.nv();
+  const int n = grid.node_count();
+
+  // Deformation regions -> index boxes; active = strictly inside a box.
+  std::vector<std::array<int, 4>> boxes;  // i_min, i_max, j_min, j_max
+  if (regions.empty()) {
+    boxes.push_back({0, nu - 1, 0, nv - 1});
+  }
+  for (const DeformationRegion& region : regions) {
+    if (!(region.deformation_radius > 0.0) || !std::isfinite(region.deformation_radius) ||
+        !region.centre.allFinite()) {
+      throw make_error("deformation radius ", region.deformation_radius,
+                       " is not positive and finite (or its centre is not finite)");
+    }
+    std::array<int, 4> box{nu, -1, nv, -1};
+    for (int k = 0; k < n; ++k) {
+      if ((rest.row(k).transpose() - region.centre).norm() < region.deformation_radius) {
+        const auto [i, j] = grid.node(k);
+        box = {std::min(box[0], i), std::max(box[1], i), std::min(box[2], j), std::max(box[3], j)};
+      }
+    }
+    if (box[1] - box[0] < 2 || box[3] - box[2] < 2) {
+      throw make_error("deformation region of radius ", region.deformation_radius, " around (",
+                       region.centre.x(), ", ", region.centre.y(), ", ", region.centre.z(),
+                       ") spans fewer than the 3 by 3 nodes it needs");
+    }
+    boxes.push_back(box);
+  }
+  slot_.assign(static_cast<size_t>(n), -1);
+  for (int k = 0; k < n; ++k) {
+    const auto [i, j] = grid.node(k);
+    for (const auto& box : boxes) {
+      if (i > box[0] && i < box[1] && j > box[2] && j < box[3]) {
+        slot_[static_cast<size_t>(k)] = static_cast<int>(active_.size());
+        active_.push_back(k);
+        break;
+      }
+    }
+  }
+
+  // Rest normals for the boundary tangents.
+  const GridDifferenceOperators operators = grid_difference_operators(grid);
+  const NodePositions t1 = operators.t1 * rest;
+  const NodePositions t2 = operators.t2 * rest;
+  NodePositions normal(n, 3);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d cross = t1.row(k).transpose().cross(t2.row(k).transpose());
+    const double length = cross.norm();
+    normal.row(k) = length > 0.0 ? Eigen::RowVector3d((cross / length).transpose())
+                                 : Eigen::RowVector3d::Zero();
+  }
+
+  // seed 002 eq 8 by central differences, times the node area h^2.
+  const double h = grid.spacing();
+  const double area = h * h;
+  const double h4 = h * h * h * h;
+  const int active_count = static_cast<int>(active_.size());
+  tangent_force_ = Eigen::VectorXd::Zero(3 * active_count);
+  std::vector<Eigen::Triplet<double>> scalar;
+  const auto slot_at = [&](int i, int j) {
+    return i < 0 || j < 0 || i >= nu || j >= nv ? -1 : slot_[static_cast<size_t>(grid.index(i, j))];
+  };
+  for (int a = 0; a < active_count; ++a) {
+    const auto [i, j] = grid.node(active_[static_cast<size_t>(a)]);
+    // Fourth differences along u (b) and v (d): r(-2) - 4 r(-1) + 6 r(0) - 4 r(1) + r(2).
+    const std::array<std::array<int, 2>, 2> axes{{{1, 0}, {0, 1}}};
+    for (int axis = 0; axis < 2; ++axis) {
+      const double coefficient = (axis == 0 ? material.b : material.d) * area / h4;
+      if (coefficient == 0.0) {
+        continue;
+      }
+      const int di = axes[static_cast<size_t>(axis)][0];
+      const int dj = axes[static_cast<size_t>(axis)][1];
+      double diagonal = 6.0;
+      for (const int side : {-1, 1}) {
+        const int near = slot_at(i + side * di, j + side * dj);
+        if (near >= 0) {
+          scalar.emplace_back(a, near, -4.0 * coefficient);
+          const int far = slot_at(i + 2 * side * di, j + 2 * side * dj);
+          if (far >= 0) {
+            scalar.emplace_back(a, far, coefficient);
+          }
+        } else {
+          // Boundary node at rest; ghost beyond it r(2) = r(0) - 2 h s n0 (displacements).
+          diagonal += 1.0;
+          const double s = axis == 0 ? (side < 0 ? material.su0 : material.su1)
+                                     : (side < 0 ? material.sv0 : material.sv1);
+          const int boundary = grid.index(i + side * di, j + side * dj);
+          tangent_force_.segment<3>(3 * a) +=
+              coefficient * 2.0 * h * s * normal.row(boundary).transpose();
+        }
+      }
+      scalar.emplace_back(a, a, diagonal * coefficient);
+    }
+    // Mixed difference (D_uu D_vv r): weights (1, -2, 1) (x) (1, -2, 1).
+    const double mixed = material.c * area / h4;
+    if (mixed != 0.0) {
+      const std::array<double, 3> w{1.0, -2.0, 1.0};
+      for (int p = -1; p <= 1; ++p) {
+        for (int r = -1; r <= 1; ++r) {
+          const int other = slot_at(i + p, j + r);
+          if (other >= 0) {
+            scalar.emplace_back(
+                a, other, mixed * w[static_cast<size_t>(p + 1)] * w[static_cast<size_t>(r + 1)]);
+          }
+        }
+      }
+    }
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(3 * scalar.size());
+  for (const auto& entry : scalar) {
+    for (int c = 0; c < 3; ++c) {
+      triplets.emplace_back(3 * entry.row() + c, 3 * entry.col() + c, entry.value());
+    }
+  }
+  const int size = 3 * active_count;
+  matrices_.stiffness.resize(size, size);
+  matrices_.stiffness.setFromTriplets(triplets.begin(), triplets.end());
+  matrices_.stiffness.makeCompressed();
+  SparseMatrix identity(size, size);
+  identity.setIdentity();
+  matrices_.mass = (material.density * area) * identity;
+  matrices_.damping = material.damping > 0.0 ? SparseMatrix((material.damping * area) * identity)
+                                             : SparseMatrix(size, size);
+  rest_coordinates_.resize(size);
+  for (int a = 0; a < active_count; ++a) {
+    rest_coordinates_.segment<3>(3 * a) = rest.row(active_[static_cast<size_t>(a)]).transpose();
+  }
+}
+
+NodePositions PdeSurface::positions(ConstVectorRef q) const {
+  if (q.size() != coordinate_count()) {
+    throw make_error("PDE surface coordinates have ", q.size(), " entries, not ",
+                     coordinate_count());
+  }
+  NodePositions r = rest_;
+  for (size_t a = 0; a < active_.size(); ++a) {
+    r.row(active_[a]) = q.segment<3>(3 * static_cast<Eigen::Index>(a)).transpose();
+  }
+  return r;
+}
+
+std::vector<int> PdeSurface::nodes_within(const Eigen::Vector3d& centre, double radius) const {
+  if (!(radius >= 0.0) || !std::isfinite(radius) || !centre.allFinite()) {
+    throw make_error("force radius ", radius, " is not non-negative and finite");
+  }
+  std::vector<int> slots;
+  for (size_t a = 0; a < active_.size(); ++a) {
+    if ((rest_.row(active_[a]).transpose() - centre).norm() <= radius) {
+      slots.push_back(static_cast<int>(a));
+    }
+  }
+  return slots;
+}
+
+Eigen::VectorXd PdeSurface::initial_coordinates() const {
+  return rest_coordinates_;
+}
+
+Eigen::Vector3d PdeSurface::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (const auto& [node, weight] : grid_.bilinear_weights(u)) {
+    if (weight == 0.0) {
+      continue;
+    }
+    const int a = slot_[static_cast<size_t>(node)];
+    x += weight * (a >= 0 ? Eigen::Vector3d(q.segment<3>(3 * a))
+                          : Eigen::Vector3d(rest_.row(node).transpose()));
+  }
+  return x;
+}
+
+SparseMatrix PdeSurface::position_jacobian(ConstVectorRef /*q*/, const Eigen::Vector2d& u) const {
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (const auto& [node, weight] : grid_.bilinear_weights(u)) {
+    const int a = slot_[static_cast<size_t>(node)];
+    if (weight != 0.0 && a >= 0) {
+      for (int c = 0; c < 3; ++c) {
+        triplets.emplace_back(c, 3 * a + c, weight);
+      }
+    }
+  }
+  SparseMatrix jacobian(3, coordinate_count());
+  jacobian.setFromTriplets(triplets.begin(), triplets.end());
+  return jacobian;
+}
+
+void PdeSurface::assemble_matrices(ConstVectorRef /*q*/, ModelMatrices& matrices) const {
+  matrices = matrices_;
+}
+
+void PdeSurface::add_internal_force(ConstVectorRef q, VectorRef force) const {
+  force.noalias() -= matrices_.stiffness * (q - rest_coordinates_);
+  force += tangent_force_;
+}
+
+double PdeSurface::potential_energy(ConstVectorRef q) const {
+  const Eigen::VectorXd d = q - rest_coordinates_;
+  return 0.5 * d.dot(matrices_.stiffness * d) - tangent_force_.dot(d);
+}
+
+void PdeSurface::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
+                                       VectorRef force) const {
+  const double area = grid_.spacing() * grid_.spacing();
+  MaterialSample sample;
+  sample.mass_density = material_.density;
+  const NodePositions r = positions(q);
+  for (size_t a = 0; a < active_.size(); ++a) {
+    const int k = active_[a];
+    const auto [i, j] = grid_.node(k);
+    sample.parameter = grid_.parameter(k);
+    sample.position = r.row(k).transpose();
+    sample.tangent_u = (r.row(grid_.index(i + 1, j)) - r.row(grid_.index(i - 1, j))).transpose() /
+                       (2.0 * grid_.spacing());
+    sample.tangent_v = (r.row(grid_.index(i, j + 1)) - r.row(grid_.index(i, j - 1))).transpose() /
+                       (2.0 * grid_.spacing());
+    force.segment<3>(3 * static_cast<Eigen::Index>(a)) += area * density(sample);
+  }
+}
+
+int PdeSurface::control_point_offset(int i) const {
+  if (i < 0 || i >= static_cast<int>(active_.size())) {
+    throw make_error("active node slot ", i, " is outside 0..",
+                     static_cast<int>(active_.size()) - 1);
+  }
+  return 3 * i;
+}
+
+int advance_frame(Integrator& integrator, System& system, double max_dt, double frame_rate) {
+  if (!(max_dt > 0.0) || !std::isfinite(max_dt)) {
+    throw make_error("sub-step max_dt = ", max_dt, " is not positive and finite");
+  }
+  if (!(frame_rate > 0.0) || !std::isfinite(frame_rate)) {
+    throw make_error("frame rate ", frame_rate, " is not positive and finite");
+  }
+  const double frame = 1.0 / frame_rate;
+  const int steps = std::max(1, static_cast<int>(std::ceil(frame / max_dt - 1e-9)));
+  const double dt = frame / steps;
+  for (int s = 0; s < steps; ++s) {
+    integrator.step(system, dt);
+  }
+  return steps;
+}
+
+}  // namespace dnurbs

@@ -1,0 +1,117 @@
+#pragma once
+// The dynamic PDE surface (seed 002 eq 8, after You et al.):
+//
+//   b d4r/du4 + c d4r/du2dv2 + d d4r/dv4 + rho d2r/dt2 + gamma dr/dt = f
+//
+// on a regular (u, v) grid with spacing h, applied to the displacement r - r0 from the rest mesh
+// (so any rest mesh is at rest without force, seed 002 section 4.2), discretised with central
+// differences (seed 002 section 4.3) and multiplied by the node area h^2, so M = rho h^2 I,
+// D = gamma h^2 I, K = h^2 (b D_uuuu + c D_uuvv + d D_vvvv) and a point force acts on its node.
+//
+// Deformation regions (seed 002 section 5): around each force centre the nodes closer than the
+// deformation radius (at rest) define a (u, v) index box; nodes strictly inside a box are
+// simulated, the box border is the boundary (held at rest) and everything outside is fixed and
+// costs nothing: the model's coordinates are only the active nodes. Several regions make the
+// union of their boxes; no region simulates the whole grid inside its border.
+//
+// Boundary conditions at the region border: the boundary node stays at rest and the ghost node
+// beyond it is r(-1) = r(1) - 2 h s n0 (central difference), so that the inward derivative of the
+// displacement at the boundary is s n0, n0 the rest normal of the boundary node and s the
+// boundary tangent su0 (boundary at smaller u), su1 (larger u), sv0, sv1. Non-zero tangents
+// deform the surface without force (seed 002 figure 9); the internal force is affine,
+// f_int = -K (q - r0) + t. M, D and K are constant, so the integrators factor once; the model
+// does not claim the S (x) I_3 layout (kronecker_block_size() = 0) because the integrators'
+// Kronecker path assumes f_int = -K q.
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/core/model.h"
+#include "dynamics/core/system.h"
+#include "surface/grid.h"
+
+namespace dnurbs {
+
+/// Coefficients of seed 002 eq 8 (constants: the tool's isotropic materials).
+struct PdeSurfaceMaterial {
+  double b = 1.0;        ///< d4/du4 coefficient (>= 0)
+  double c = 2.0;        ///< d4/du2dv2 coefficient (>= 0; b = d = 1, c = 2 is the biharmonic)
+  double d = 1.0;        ///< d4/dv4 coefficient (>= 0)
+  double density = 1.0;  ///< rho (> 0)
+  double damping = 0.0;  ///< gamma (>= 0)
+  double su0 = 0.0;      ///< boundary tangents (finite): inward slope along the rest normal
+  double su1 = 0.0;
+  double sv0 = 0.0;
+  double sv1 = 0.0;
+};
+
+/// A deformation region: the nodes within `deformation_radius` of `centre` at rest.
+struct DeformationRegion {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double deformation_radius = 1.0;
+};
+
+/// The PDE surface as a Model. Coordinates q = [r_a0, r_a1, ...], the positions of the active
+/// nodes (active_nodes() lists their grid indices); the fixed nodes keep their rest positions.
+class PdeSurface : public Model {
+ public:
+  /// Throws Error naming the value for a grid under 3 by 3 nodes, a non-finite rest position, a
+  /// negative or non-finite coefficient, rho <= 0, a radius <= 0 or a region without an interior
+  /// node (seed 002: the region must be at least 3 by 3 nodes).
+  PdeSurface(const Grid& grid, const NodePositions& rest, const PdeSurfaceMaterial& material = {},
+             const std::vector<DeformationRegion>& regions = {});
+
+  std::unique_ptr<Model> clone() const override { return std::make_unique<PdeSurface>(*this); }
+
+  const Grid& grid() const { return grid_; }
+  const NodePositions& rest_positions() const { return rest_; }
+  /// Grid indices of the active nodes, ascending; active slot a holds node active_nodes()[a].
+  const std::vector<int>& active_nodes() const { return active_; }
+  /// The active slot of a grid node, or -1 for a fixed node.
+  int active_slot(int node) const { return slot_[static_cast<size_t>(node)]; }
+  /// Every grid node's position at q (#nodes by 3): active from q, fixed at rest.
+  NodePositions positions(ConstVectorRef q) const;
+  /// The active slots whose rest position is within `radius` of `centre` (the force region of
+  /// seed 002): pass them to control_point_force (dynamics/core/forces.h).
+  std::vector<int> nodes_within(const Eigen::Vector3d& centre, double radius) const;
+  /// The constant force t of the boundary tangents (3 per active node).
+  const Eigen::VectorXd& tangent_force() const { return tangent_force_; }
+
+  int coordinate_count() const override { return 3 * static_cast<int>(active_.size()); }
+  Eigen::VectorXd initial_coordinates() const override;
+  int parametric_dimension() const override { return 2; }
+  Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  SparseMatrix position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  bool matrices_are_constant() const override { return true; }
+  const ModelMatrices* constant_matrices() const override { return &matrices_; }
+  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const override;
+  /// f_int = -K (q - r0) + t.
+  void add_internal_force(ConstVectorRef q, VectorRef force) const override;
+  /// E = (1/2) (q - r0)^T K (q - r0) - t . (q - r0).
+  double potential_energy(ConstVectorRef q) const override;
+  /// sum over active nodes of h^2 f(sample at the node).
+  void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
+                             VectorRef force) const override;
+  /// Active slot i's coordinates start at 3 i.
+  int control_point_offset(int i) const override;
+
+ private:
+  Grid grid_;
+  PdeSurfaceMaterial material_;
+  NodePositions rest_;
+  std::vector<int> active_;
+  std::vector<int> slot_;
+  Eigen::VectorXd rest_coordinates_;
+  Eigen::VectorXd tangent_force_;
+  ModelMatrices matrices_;
+};
+
+/// Sub-steps to an output frame rate (seed 002 section 4.3: the solver runs until the frame's
+/// 1/frame_rate has elapsed): ceil(1 / (frame_rate max_dt)) equal steps of at most max_dt.
+/// Returns the number of steps. Throws Error naming max_dt or frame_rate if not positive.
+int advance_frame(Integrator& integrator, System& system, double max_dt, double frame_rate = 24.0);
+
+}  // namespace dnurbs

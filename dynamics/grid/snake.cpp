@@ -1,0 +1,270 @@
+#include "dynamics/grid/snake.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+
+namespace dnurbs {
+
+namespace {
+
+using RowNodes = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+Eigen::VectorXd weights(const Eigen::VectorXd& given, double constant, int count,
+                        const char* name) {
+  Eigen::VectorXd w = given.size() == 0 ? Eigen::VectorXd::Constant(count, constant) : given;
+  if (w.size() != count) {
+    throw make_error(name, " has ", w.size(), " entries for a snake of ", count, " nodes");
+  }
+  for (int i = 0; i < count; ++i) {
+    if (!(w[i] >= 0.0) || !std::isfinite(w[i])) {
+      throw make_error(name, " at node ", i, " is ", w[i], ", not a non-negative finite number");
+    }
+  }
+  return w;
+}
+
+SparseMatrix kron_identity3(const SparseMatrix& a) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
+    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
+      for (int c = 0; c < 3; ++c) {
+        triplets.emplace_back(3 * it.row() + c, 3 * it.col() + c, it.value());
+      }
+    }
+  }
+  SparseMatrix result(3 * a.rows(), 3 * a.cols());
+  result.setFromTriplets(triplets.begin(), triplets.end());
+  return result;
+}
+
+}  // namespace
+
+Snake::Snake(const NodeChain& chain, const NodePositions& initial, const SnakeMaterial& material)
+    : chain_(chain), initial_(initial) {
+  const int n = chain.count();
+  if (initial.rows() != n) {
+    throw make_error("snake initial positions have ", initial.rows(), " rows for ", n, " nodes");
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!initial.row(i).allFinite()) {
+      throw make_error("snake initial position of node ", i, " is not finite");
+    }
+  }
+  if (!(material.mass_density > 0.0) || !std::isfinite(material.mass_density)) {
+    throw make_error("snake mass density mu = ", material.mass_density,
+                     " is not positive and finite");
+  }
+  if (!(material.damping_density >= 0.0) || !std::isfinite(material.damping_density)) {
+    throw make_error("snake damping density gamma = ", material.damping_density,
+                     " is not non-negative and finite");
+  }
+  Eigen::VectorXd w1 = weights(material.tension, material.constant_tension, n, "tension w1");
+  Eigen::VectorXd w2 = weights(material.rigidity, material.constant_rigidity, n, "rigidity w2");
+  if (!chain.closed()) {
+    // An open chain has no difference past its ends: no u_N - u_{N-1} and no second
+    // difference at the end nodes.
+    w1[n - 1] = 0.0;
+    w2[0] = 0.0;
+    w2[n - 1] = 0.0;
+  }
+  const double h = chain.spacing();
+  const double h2 = h * h;
+  const double h4 = h2 * h2;
+  const auto at = [&](const Eigen::VectorXd& w, int i) { return w[((i % n) + n) % n]; };
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int i = 0; i < n; ++i) {
+    // seed 001 eqs 1.9-1.11, indices modulo N.
+    const double a =
+        (at(w1, i - 1) + at(w1, i)) / h2 + (at(w2, i - 1) + 4.0 * at(w2, i) + at(w2, i + 1)) / h4;
+    const double b = -at(w1, i) / h2 - 2.0 * (at(w2, i) + at(w2, i + 1)) / h4;
+    const double c = at(w2, i + 1) / h4;
+    triplets.emplace_back(i, i, a);
+    const int i1 = chain.neighbour(i, 1);
+    const int i2 = chain.neighbour(i, 2);
+    if (i1 >= 0 && b != 0.0) {
+      triplets.emplace_back(i, i1, b);
+      triplets.emplace_back(i1, i, b);
+    }
+    if (i2 >= 0 && c != 0.0) {
+      triplets.emplace_back(i, i2, c);
+      triplets.emplace_back(i2, i, c);
+    }
+  }
+  scalar_.stiffness.resize(n, n);
+  scalar_.stiffness.setFromTriplets(triplets.begin(), triplets.end());
+  scalar_.stiffness.makeCompressed();
+  SparseMatrix identity(n, n);
+  identity.setIdentity();
+  scalar_.mass = material.mass_density * identity;
+  scalar_.damping = material.damping_density > 0.0
+                        ? SparseMatrix(material.damping_density * identity)
+                        : SparseMatrix(n, n);
+  matrices_.mass = kron_identity3(scalar_.mass);
+  matrices_.damping = kron_identity3(scalar_.damping);
+  matrices_.stiffness = kron_identity3(scalar_.stiffness);
+}
+
+NodePositions Snake::positions(ConstVectorRef q) const {
+  if (q.size() != coordinate_count()) {
+    throw make_error("snake coordinates have ", q.size(), " entries, not ", coordinate_count());
+  }
+  return Eigen::Map<const RowNodes>(q.data(), chain_.count(), 3);
+}
+
+Eigen::VectorXd Snake::initial_coordinates() const {
+  Eigen::VectorXd q(coordinate_count());
+  Eigen::Map<RowNodes>(q.data(), chain_.count(), 3) = initial_;
+  return q;
+}
+
+Eigen::Vector3d Snake::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (const auto& [node, weight] : chain_.linear_weights(u.x())) {
+    x += weight * q.segment<3>(3 * node);
+  }
+  return x;
+}
+
+SparseMatrix Snake::position_jacobian(ConstVectorRef /*q*/, const Eigen::Vector2d& u) const {
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (const auto& [node, weight] : chain_.linear_weights(u.x())) {
+    if (weight != 0.0) {
+      for (int c = 0; c < 3; ++c) {
+        triplets.emplace_back(c, 3 * node + c, weight);
+      }
+    }
+  }
+  SparseMatrix jacobian(3, coordinate_count());
+  jacobian.setFromTriplets(triplets.begin(), triplets.end());
+  return jacobian;
+}
+
+void Snake::assemble_matrices(ConstVectorRef /*q*/, ModelMatrices& matrices) const {
+  matrices = matrices_;
+}
+
+void Snake::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
+                                  VectorRef force) const {
+  MaterialSample sample;
+  sample.mass_density = scalar_.mass.coeff(0, 0);
+  const int n = chain_.count();
+  for (int i = 0; i < n; ++i) {
+    sample.parameter = Eigen::Vector2d(chain_.parameter(i), 0.0);
+    sample.position = q.segment<3>(3 * i);
+    const int next = chain_.neighbour(i, 1) >= 0 ? chain_.neighbour(i, 1) : i;
+    const int previous = chain_.neighbour(i, -1) >= 0 ? chain_.neighbour(i, -1) : i;
+    sample.tangent_u = (q.segment<3>(3 * next) - q.segment<3>(3 * previous)) /
+                       ((next - previous == 0 ? 1 : 2) * chain_.spacing());
+    force.segment<3>(3 * i) += density(sample);
+  }
+}
+
+int Snake::control_point_offset(int i) const {
+  if (i < 0 || i >= chain_.count()) {
+    throw make_error("snake node ", i, " is outside 0..", chain_.count() - 1);
+  }
+  return 3 * i;
+}
+
+Force potential_force(Potential potential, double gradient_step) {
+  if (!potential) {
+    throw make_error("potential force has no potential function");
+  }
+  if (!(gradient_step > 0.0) || !std::isfinite(gradient_step)) {
+    throw make_error("potential gradient step ", gradient_step, " is not positive and finite");
+  }
+  return [potential = std::move(potential), gradient_step](const Model& model, double /*t*/,
+                                                           ConstVectorRef q, ConstVectorRef /*qd*/,
+                                                           VectorRef generalized) {
+    const int nodes = model.coordinate_count() / 3;
+    for (int i = 0; i < nodes; ++i) {
+      const int offset = model.control_point_offset(i);
+      const Eigen::Vector2d x = q.segment<2>(offset);
+      const Eigen::Vector2d ex(gradient_step, 0.0);
+      const Eigen::Vector2d ey(0.0, gradient_step);
+      // seed 001 eq 1.5: the external force -grad P(v).
+      generalized[offset] -= (potential(x + ex) - potential(x - ex)) / (2.0 * gradient_step);
+      generalized[offset + 1] -= (potential(x + ey) - potential(x - ey)) / (2.0 * gradient_step);
+    }
+  };
+}
+
+Potential image_potential(const Eigen::MatrixXd& image, double sigma, double c) {
+  if (image.rows() < 2 || image.cols() < 2) {
+    throw make_error("image of ", image.rows(), " by ", image.cols(),
+                     " pixels is smaller than 2 by 2");
+  }
+  if (!image.allFinite()) {
+    throw make_error("image has a non-finite pixel");
+  }
+  if (!(sigma >= 0.0) || !std::isfinite(sigma)) {
+    throw make_error("image smoothing width sigma = ", sigma, " is not non-negative and finite");
+  }
+  if (!std::isfinite(c)) {
+    throw make_error("image potential magnitude c = ", c, " is not finite");
+  }
+  const Eigen::Index rows = image.rows();
+  const Eigen::Index cols = image.cols();
+  // G_sigma * I: separable Gaussian, radius 3 sigma, clamped borders.
+  Eigen::MatrixXd smooth = image;
+  if (sigma > 0.0) {
+    const int radius = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
+    Eigen::VectorXd kernel(2 * radius + 1);
+    for (int k = -radius; k <= radius; ++k) {
+      kernel[k + radius] = std::exp(-0.5 * k * k / (sigma * sigma));
+    }
+    kernel /= kernel.sum();
+    Eigen::MatrixXd pass(rows, cols);
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      for (Eigen::Index col = 0; col < cols; ++col) {
+        double sum = 0.0;
+        for (int k = -radius; k <= radius; ++k) {
+          sum += kernel[k + radius] * image(r, std::clamp<Eigen::Index>(col + k, 0, cols - 1));
+        }
+        pass(r, col) = sum;
+      }
+    }
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      for (Eigen::Index col = 0; col < cols; ++col) {
+        double sum = 0.0;
+        for (int k = -radius; k <= radius; ++k) {
+          sum += kernel[k + radius] * pass(std::clamp<Eigen::Index>(r + k, 0, rows - 1), col);
+        }
+        smooth(r, col) = sum;
+      }
+    }
+  }
+  // P = -c |grad(G_sigma * I)| at the pixels (central differences, one-sided at the border).
+  auto field = std::make_shared<Eigen::MatrixXd>(rows, cols);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (Eigen::Index col = 0; col < cols; ++col) {
+      const Eigen::Index c0 = std::max<Eigen::Index>(col - 1, 0);
+      const Eigen::Index c1 = std::min<Eigen::Index>(col + 1, cols - 1);
+      const Eigen::Index r0 = std::max<Eigen::Index>(r - 1, 0);
+      const Eigen::Index r1 = std::min<Eigen::Index>(r + 1, rows - 1);
+      const double gx = (smooth(r, c1) - smooth(r, c0)) / static_cast<double>(c1 - c0);
+      const double gy = (smooth(r1, col) - smooth(r0, col)) / static_cast<double>(r1 - r0);
+      (*field)(r, col) = -c * std::hypot(gx, gy);
+    }
+  }
+  return [field](const Eigen::Vector2d& x) {
+    const double fx = std::clamp(x.x(), 0.0, static_cast<double>(field->cols() - 1));
+    const double fy = std::clamp(x.y(), 0.0, static_cast<double>(field->rows() - 1));
+    const Eigen::Index c0 =
+        std::min<Eigen::Index>(static_cast<Eigen::Index>(fx), field->cols() - 2);
+    const Eigen::Index r0 =
+        std::min<Eigen::Index>(static_cast<Eigen::Index>(fy), field->rows() - 2);
+    const double s = fx - static_cast<double>(c0);
+    const double t = fy - static_cast<double>(r0);
+    const Eigen::MatrixXd& p = *field;
+    return (1 - s) * (1 - t) * p(r0, c0) + s * (1 - t) * p(r0, c0 + 1) +
+           (1 - s) * t * p(r0 + 1, c0) + s * t * p(r0 + 1, c0 + 1);
+  };
+}
+
+}  // namespace dnurbs

@@ -1,0 +1,134 @@
+#pragma once
+// Time integration of M qdd + D qd - f_int(q) = f + g (seed 001 eq 1.24; DESIGN.md, "Time
+// integration"). Every scheme is written for one unknown, the acceleration a of the step:
+//
+//   q_new = q_pred "+" position_coefficient a      (Model::advance_coordinates)
+//   v_eq  = v_pred + velocity_coefficient a        (velocity in the damping term)
+//   A a = b,   A = M + velocity_coefficient D + position_coefficient K_T,
+//   b = f + g + f_int(q_pred) - D v_pred           (the residual at a = 0)
+//
+//   central         seed 001 eq 1.13, (M/dt^2 + D/(2dt) + K) q(t+dt) = (2M/dt^2) q(t)
+//                   - (M/dt^2 - D/(2dt)) q(t-dt) + f(t): with v = (q(t) - q(t-dt))/dt stored as
+//                   the velocity, q_pred = q + dt v, position_coefficient dt^2, velocity
+//                   coefficient dt/2, forces at time t and state (q, v).
+//   implicit-euler  q_pred = q + dt v, coefficients dt^2 and dt, forces at t + dt.
+//   newmark         q_pred = q + dt v + dt^2 (1/2 - beta) a_old, v_pred = v + dt (1 - gamma)
+//                   a_old, coefficients beta dt^2 and gamma dt (beta = 1/4, gamma = 1/2:
+//                   average acceleration), forces at t + dt.
+//
+// A is block diagonal by model (the System stacks the models' M, D, K), so it is factored and
+// solved block by block, one block per model, each with SimplicialLDLT:
+//   constant blocks (fixed-weight D-NURBS, grid surfaces, snakes) are factored once per
+//   (dt, scheme) and every later solve only back-substitutes; a constant model with the
+//   S (x) I_3 structure is factored as its scalar matrix with x, y, z as three right-hand sides;
+//   state-dependent blocks (superquadrics, free-weight D-NURBS) make the step linearly implicit
+//   (the block and its part of b at the predictor) with optional Newton iterations on a (the
+//   block re-assembled and re-factored at each iterate, tangent stiffness K_T = -d f_int/dq as
+//   the model gives it); constant blocks of the same system are not touched by those.
+// The initial guess of a is the last acceleration under Newmark when some block is
+// state-dependent, zero otherwise (for every block alike, as when A was factored whole, so
+// results are those of the whole-system factorization up to rounding). The StepSystem solve hook
+// (constraints) solves block by block too.
+//
+// Fixed coordinates are eliminated: their acceleration and velocity are zero and only the free
+// rows and columns of each block are solved.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynamics/core/system.h"
+
+namespace dnurbs {
+
+enum class IntegratorScheme { kCentral, kImplicitEuler, kNewmark };
+
+/// "central", "implicit-euler" or "newmark"; throws Error naming any other string.
+IntegratorScheme parse_integrator_scheme(std::string_view name);
+std::string_view to_string(IntegratorScheme scheme);
+
+struct IntegratorSettings {
+  IntegratorScheme scheme = IntegratorScheme::kNewmark;
+  double newmark_beta = 0.25;  ///< average acceleration
+  double newmark_gamma = 0.5;
+  /// Newton iterations after the linearly implicit solve where matrices depend on q (or
+  /// applied forces depend on the state); 0 = linearly implicit.
+  int newton_iterations = 0;
+  /// Iterations stop when |delta a| <= newton_tolerance * max(|a|, 1e-300).
+  double newton_tolerance = 1e-12;
+};
+
+/// The linear system of one step, handed to a solve hook (a constraint layer adds its rows
+/// C_q a = ... around it). Vectors are velocity-space (System::velocity_count()).
+struct StepSystem {
+  double time = 0.0;  ///< time of the applied forces
+  double dt = 0.0;
+  double position_coefficient = 0.0;  ///< q_new = q_pred "+" position_coefficient a
+  double velocity_coefficient = 0.0;  ///< v_eq = v_pred + velocity_coefficient a
+  const Eigen::VectorXd* predicted_coordinates = nullptr;  ///< q of the current iterate
+  const Eigen::VectorXd* predicted_velocities = nullptr;   ///< v of the current iterate
+  double state_time = 0.0;                                 ///< time of the iterate's state (t + dt)
+  const Eigen::VectorXd* acceleration = nullptr;           ///< acceleration a of the iterate so far
+  /// Changes whenever `solve` uses a new factorisation (of A or, for the initial acceleration,
+  /// of M), so that a hook may keep work done with the previous one.
+  std::uint64_t factorization_serial = 0;
+  const std::vector<int>* fixed_coordinates = nullptr;
+  const Eigen::VectorXd* rhs = nullptr;  ///< b (the residual at the current iterate)
+  /// x = A^{-1} r on the free coordinates (x zero on fixed ones); reuses the factorization.
+  std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& x)> solve;
+};
+
+/// Replaces the default solve a = A^{-1} b of each (Newton) iteration.
+using SolveHook = std::function<void(const StepSystem& step, Eigen::VectorXd& a)>;
+
+class Integrator {
+ public:
+  explicit Integrator(IntegratorSettings settings = {});
+  Integrator(const Integrator& other);
+  Integrator& operator=(const Integrator& other);
+  Integrator(Integrator&&) noexcept;
+  Integrator& operator=(Integrator&&) noexcept;
+  ~Integrator();
+
+  const IntegratorSettings& settings() const { return settings_; }
+
+  /// Advances `system` by dt. Throws Error naming dt if dt <= 0 or not finite, and Error (state
+  /// untouched) if the step produces a non-finite coordinate, velocity or acceleration or the
+  /// effective matrix cannot be factored.
+  void step(System& system, double dt);
+
+  /// Installs a hook that solves each step's linear system (nullptr restores the default).
+  void set_solve_hook(SolveHook hook) { hook_ = std::move(hook); }
+
+  /// Newton iterations done by the last step (0 for a linearly implicit step).
+  int last_newton_iterations() const { return last_iterations_; }
+  /// Number of block factorizations of A so far, summed over the models' blocks: a constant
+  /// block counts one per dt and scheme (a system of one constant model: one in all), a
+  /// state-dependent block one per solve (per Newton iterate). The mass-matrix factorization of
+  /// Newmark's initial acceleration is not counted.
+  int factorization_count() const { return factorization_count_; }
+  /// Factorizations of model `model`'s block of A (counted as in factorization_count()) since
+  /// the last stepped system's layout (its models) was set up; throws Error naming the index if
+  /// that system has no such model.
+  int block_factorization_count(int model) const;
+
+  /// Opaque caches (factorizations and work vectors).
+  struct Workspace;
+
+ private:
+  void initial_acceleration(System& system);
+
+  IntegratorSettings settings_;
+  SolveHook hook_;
+  std::unique_ptr<Workspace> work_;
+  int last_iterations_ = 0;
+  int factorization_count_ = 0;
+  std::uint64_t factorization_serial_ = 0;
+};
+
+}  // namespace dnurbs

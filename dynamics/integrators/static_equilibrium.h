@@ -1,0 +1,16 @@
+#pragma once
+// Static equilibrium of a linear system: K q = f on the free coordinates, the fixed ones held at
+// their current values (seed 001 eq 1.24 with qdd = qd = 0 and g = 0).
+
+#include "dynamics/core/system.h"
+
+namespace dnurbs {
+
+/// Solves K_ff q_f = f_f - K_fc q_c for the free coordinates q_f, f the applied forces at the
+/// system's time and current state (state-dependent forces are evaluated once, at the current
+/// state), and sets the result with zero velocity. Only for constant-matrix systems (throws
+/// Error otherwise). Throws Error if K_ff is singular (e.g. nothing is fixed, so a rigid
+/// translation costs no energy).
+void solve_static_equilibrium(System& system);
+
+}  // namespace dnurbs
