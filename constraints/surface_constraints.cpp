@@ -2,29 +2,34 @@
 
 #include <cmath>
 #include <sstream>
+#include <variant>
 
 #include <Eigen/Geometry>
 
 #include "constraints/point_constraints.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "nurbs/closest_point.h"
 #include "core/error.h"
-#include "nurbs/jacobian.h"
+#include "nurbs/closest_point.h"
 
 namespace dnurbs {
 namespace {
 
-const DNurbsSurface& dnurbs_surface(const System& system, int model, const char* what) {
+const Model& checked_model(const System& system, int model, const char* what) {
   if (model < 0 || model >= system.model_count()) {
     throw make_error(what, ": model index ", model, " is out of range (the system has ",
                      system.model_count(), " models)");
   }
-  const auto* surface = dynamic_cast<const DNurbsSurface*>(&system.model(model));
-  if (surface == nullptr) {
-    throw make_error(what, ": model ", model, " is not a D-NURBS surface");
+  return system.model(model);
+}
+
+// The exact NURBS shape (Model::exact_shape) of model `model` at the system's current state.
+template <typename ShapeType>
+ShapeType exact(const System& system, int model, const char* what, const char* kind) {
+  const std::optional<Shape> shape =
+      checked_model(system, model, what).exact_shape(system.coordinates(model));
+  if (!shape || !std::holds_alternative<ShapeType>(*shape)) {
+    throw make_error(what, ": model ", model, " has no exact ", kind);
   }
-  return *surface;
+  return std::get<ShapeType>(*shape);
 }
 
 }  // namespace
@@ -58,52 +63,30 @@ std::string SurfaceNormalConstraint::description() const {
 }
 
 void SurfaceNormalConstraint::check(const System& system) const {
-  dnurbs_surface(system, model_, "surface normal constraint");
+  const Model& model = checked_model(system, model_, "surface normal constraint");
   check_material_point(system, model_, uv_, "surface normal constraint");
+  if (model.parametric_dimension() != 2) {
+    throw make_error("surface normal constraint: model ", model_, " is not a surface");
+  }
+  TangentKinematics tangents;
+  try {
+    model.tangent_kinematics(system.coordinates(model_), system.velocities(model_), uv_, tangents);
+  } catch (const Error& error) {
+    throw make_error("surface normal constraint: model ", model_, ": ", error.what());
+  }
 }
 
 void SurfaceNormalConstraint::evaluate(const System& system, ConstVectorRef q, ConstVectorRef qd,
                                        double /*time*/, ConstraintRows& rows) const {
-  const DNurbsSurface& model = dnurbs_surface(system, model_, "surface normal constraint");
   const ModelView view = model_view(system, model_, q, qd);
-  const NurbsSurface surface = model.surface(view.q);
-  const WeightMode mode = model.weight_mode();
-  SurfaceJacobian jacobian;
-  surface_jacobian(surface, uv_.x(), uv_.y(), 1, mode, jacobian);
-  const auto u_index = static_cast<int>(SurfaceQuantity::kU);
-  const auto v_index = static_cast<int>(SurfaceQuantity::kV);
-  const Eigen::Vector3d& Su = jacobian.point_derivatives[static_cast<size_t>(u_index)];
-  const Eigen::Vector3d& Sv = jacobian.point_derivatives[static_cast<size_t>(v_index)];
+  TangentKinematics tangents;
+  view.model.tangent_kinematics(view.q, view.qd, uv_, tangents);
+  const Eigen::Vector3d& Su = tangents.su;
+  const Eigen::Vector3d& Sv = tangents.sv;
   const Eigen::Vector3d normal = Su.cross(Sv);
-
-  // Rates Sdot_u = J_u qd, Sdot_v = J_v qd, and Jdot qd (free weights only).
-  const Eigen::MatrixX3d point_rates = model.control_points(view.qd);
-  const Eigen::VectorXd weight_rates = mode == WeightMode::kFree
-                                           ? model.weights(view.qd)
-                                           : Eigen::VectorXd::Zero(model.control_point_count());
-  Eigen::Vector3d Su_rate = Eigen::Vector3d::Zero();
-  Eigen::Vector3d Sv_rate = Eigen::Vector3d::Zero();
-  for (int a = 0; a < jacobian.active_count; ++a) {
-    const int point = jacobian.control_point[static_cast<size_t>(a)];
-    Su_rate += jacobian.basis(u_index, a) * point_rates.row(point).transpose();
-    Sv_rate += jacobian.basis(v_index, a) * point_rates.row(point).transpose();
-    if (mode == WeightMode::kFree) {
-      Su_rate += jacobian.weight_column[static_cast<size_t>(u_index)].col(a) * weight_rates[point];
-      Sv_rate += jacobian.weight_column[static_cast<size_t>(v_index)].col(a) * weight_rates[point];
-    }
-  }
-  Eigen::Vector3d Su_acceleration_bias = Eigen::Vector3d::Zero();
-  Eigen::Vector3d Sv_acceleration_bias = Eigen::Vector3d::Zero();
-  if (mode == WeightMode::kFree) {
-    std::array<Eigen::Vector3d, 6> rates;
-    surface_jacobian_rate(surface, uv_.x(), uv_.y(), 1, point_rates, weight_rates, rates);
-    Su_acceleration_bias = rates[static_cast<size_t>(u_index)];
-    Sv_acceleration_bias = rates[static_cast<size_t>(v_index)];
-  }
-  const Eigen::Vector3d normal_rate = Su_rate.cross(Sv) + Su.cross(Sv_rate);
-  const Eigen::Vector3d normal_bias = 2.0 * Su_rate.cross(Sv_rate) +
-                                      Su_acceleration_bias.cross(Sv) +
-                                      Su.cross(Sv_acceleration_bias);
+  const Eigen::Vector3d normal_rate = tangents.su_rate.cross(Sv) + Su.cross(tangents.sv_rate);
+  const Eigen::Vector3d normal_bias = 2.0 * tangents.su_rate.cross(tangents.sv_rate) +
+                                      tangents.su_bias.cross(Sv) + Su.cross(tangents.sv_bias);
   const std::array<const Eigen::Vector3d*, 2> basis = {&e1_, &e2_};
   for (int k = 0; k < 2; ++k) {
     const Eigen::Vector3d& e = *basis[static_cast<size_t>(k)];
@@ -114,21 +97,11 @@ void SurfaceNormalConstraint::evaluate(const System& system, ConstVectorRef q, C
     // e.(dSu x Sv) = dSu.(Sv x e) and e.(Su x dSv) = dSv.(e x Su).
     const Eigen::Vector3d along_u = Sv.cross(e);
     const Eigen::Vector3d along_v = e.cross(Su);
-    for (int a = 0; a < jacobian.active_count; ++a) {
-      const int point = jacobian.control_point[static_cast<size_t>(a)];
-      const int column = view.velocity_offset + model.control_point_offset(point);
-      const Eigen::Vector3d coefficient =
-          jacobian.basis(u_index, a) * along_u + jacobian.basis(v_index, a) * along_v;
-      for (int c = 0; c < 3; ++c) {
-        rows.jacobian->emplace_back(row, column + c, coefficient[c]);
-      }
-      if (mode == WeightMode::kFree) {
-        const double weight_coefficient =
-            jacobian.weight_column[static_cast<size_t>(u_index)].col(a).dot(along_u) +
-            jacobian.weight_column[static_cast<size_t>(v_index)].col(a).dot(along_v);
-        rows.jacobian->emplace_back(row, view.velocity_offset + model.weight_offset(point),
-                                    weight_coefficient);
-      }
+    for (size_t j = 0; j < tangents.columns.size(); ++j) {
+      const auto column = static_cast<Eigen::Index>(j);
+      rows.jacobian->emplace_back(row, view.velocity_offset + tangents.columns[j],
+                                  tangents.ju.col(column).dot(along_u) +
+                                      tangents.jv.col(column).dot(along_v));
     }
   }
 }
@@ -137,19 +110,13 @@ std::vector<std::unique_ptr<Constraint>> curve_on_surface_constraints(const Syst
                                                                       int curve_model,
                                                                       int surface_model,
                                                                       int sample_count) {
-  const DNurbsSurface& surface_dynamics = dnurbs_surface(system, surface_model, "curve on surface");
-  if (curve_model < 0 || curve_model >= system.model_count()) {
-    throw make_error("curve on surface: model index ", curve_model, " is out of range");
-  }
-  const auto* curve_dynamics = dynamic_cast<const DNurbsCurve*>(&system.model(curve_model));
-  if (curve_dynamics == nullptr) {
-    throw make_error("curve on surface: model ", curve_model, " is not a D-NURBS curve");
-  }
+  const auto surface = exact<NurbsSurface>(system, surface_model, "curve on surface",
+                                           "NURBS surface (Model::exact_shape)");
+  const auto curve =
+      exact<NurbsCurve>(system, curve_model, "curve on surface", "NURBS curve (Model::exact_shape)");
   if (sample_count < 1) {
     throw make_error("curve on surface: sample count ", sample_count, " must be at least 1");
   }
-  const NurbsCurve curve = curve_dynamics->curve(system.coordinates(curve_model));
-  const NurbsSurface surface = surface_dynamics.surface(system.coordinates(surface_model));
   const double start = curve.knots().domain_start();
   const double end = curve.knots().domain_end();
   std::vector<std::unique_ptr<Constraint>> constraints;

@@ -1,6 +1,6 @@
 #pragma once
-// Constraints specific to D-NURBS surfaces and curves: a surface normal held parallel to a
-// direction, and a curve glued onto a surface by samples.
+// Constraints on surfaces: a surface normal held parallel to a direction, and a curve glued onto
+// a surface by samples.
 
 #include <memory>
 #include <string>
@@ -15,7 +15,7 @@ namespace dnurbs {
 /// direction. C is measured in units of |S_u x S_v|. With dN = dS_u x S_v + S_u x dS_v,
 ///   C_q = e^T (-[S_v]x J_u + [S_u]x J_v),
 ///   sigma = -e.(2 Sdot_u x Sdot_v + (Jdot_u qd) x S_v + S_u x (Jdot_v qd)).
-/// The model must be a DNurbsSurface.
+/// The model must give its tangent kinematics (Model::tangent_kinematics; D-NURBS surfaces do).
 class SurfaceNormalConstraint : public Constraint {
  public:
   SurfaceNormalConstraint(int model, const Eigen::Vector2d& uv, const Eigen::Vector3d& direction);
@@ -34,8 +34,8 @@ class SurfaceNormalConstraint : public Constraint {
   Eigen::Vector3d e2_;
 };
 
-/// Ball joints that hold a D-NURBS curve (model `curve_model`) on a D-NURBS surface
-/// (`surface_model`) at `sample_count` curve parameters spread evenly over its domain. Each
+/// Ball joints that hold a curve model (`curve_model`) on a surface model (`surface_model`), both
+/// with an exact NURBS shape (Model::exact_shape: D-NURBS curves and surfaces), at `sample_count` curve parameters spread evenly over its domain. Each
 /// sample is joined to the surface point nearest to it at the system's current state (closest
 /// point projection), so a curve drawn near the surface is glued where it lies.
 std::vector<std::unique_ptr<Constraint>> curve_on_surface_constraints(const System& system,

@@ -7,8 +7,6 @@
 
 #include <nlopt.hpp>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "dynamics/dnurbs/dnurbs_model.h"
 #include "core/error.h"
 
 namespace dnurbs {
@@ -44,45 +42,17 @@ const char* result_name(nlopt::result result) {
 }
 
 // Velocity index -> stacked coordinate index of the same vector-space coordinate, or -1 where the
-// velocity has no such coordinate (a superquadric's body angular velocity: its orientation is a
-// quaternion and is held).
+// velocity has no such coordinate (Model::velocity_coordinate: a superquadric's body angular
+// velocity, whose orientation is a quaternion and is held).
 std::vector<int> velocity_to_coordinate(const System& system) {
   std::vector<int> map(static_cast<size_t>(system.velocity_count()), -1);
   for (int i = 0; i < system.model_count(); ++i) {
     const Model& model = system.model(i);
-    const int velocity_offset = system.velocity_offset(i);
-    const int coordinate_offset = system.coordinate_offset(i);
-    auto set = [&](int velocity, int coordinate) {
-      map[static_cast<size_t>(velocity_offset + velocity)] = coordinate_offset + coordinate;
-    };
-    if (model.coordinate_count() == model.velocity_count()) {
-      for (int v = 0; v < model.velocity_count(); ++v) {
-        set(v, v);
-      }
-      continue;
-    }
-    const auto* superquadric = dynamic_cast<const DeformableSuperquadricModel*>(&model);
-    if (superquadric == nullptr) {
-      throw make_error("energy minimisation cannot map the velocities of model ", i, " (",
-                       model.velocity_count(), " velocities, ", model.coordinate_count(),
-                       " coordinates) to coordinates");
-    }
-    if (superquadric->translation_velocity_offset() >= 0) {
-      for (int k = 0; k < 3; ++k) {
-        set(superquadric->translation_velocity_offset() + k,
-            superquadric->translation_coordinate_offset() + k);
-      }
-    }
-    const int local = superquadric->local_velocity_offset();
-    if (superquadric->shape_velocity_offset() >= 0) {
-      const int end = local >= 0 ? local : model.velocity_count();
-      for (int v = superquadric->shape_velocity_offset(); v < end; ++v) {
-        set(v, superquadric->shape_coordinate_offset() + v - superquadric->shape_velocity_offset());
-      }
-    }
-    if (local >= 0) {
-      for (int v = local; v < model.velocity_count(); ++v) {
-        set(v, superquadric->local_coordinate_offset() + v - local);
+    for (int v = 0; v < model.velocity_count(); ++v) {
+      const int coordinate = model.velocity_coordinate(v);
+      if (coordinate >= 0) {
+        map[static_cast<size_t>(system.velocity_offset(i) + v)] =
+            system.coordinate_offset(i) + coordinate;
       }
     }
   }
@@ -203,16 +173,12 @@ DesignResult minimize_energy(const System& system, const ConstraintSolver* const
                             problem.applied_force);
 
   // Free variables and their bounds (free D-NURBS weights >= minimum weight).
-  std::vector<double> lower(static_cast<size_t>(n), -HUGE_VAL);
+  Eigen::VectorXd bounds = Eigen::VectorXd::Constant(n, -HUGE_VAL);
   for (int i = 0; i < system.model_count(); ++i) {
-    const auto* nurbs = dynamic_cast<const DNurbsModel*>(&system.model(i));
-    if (nurbs != nullptr && nurbs->weight_mode() == WeightMode::kFree) {
-      for (int c = 0; c < nurbs->control_point_count(); ++c) {
-        lower[static_cast<size_t>(system.velocity_offset(i) + nurbs->weight_offset(c))] =
-            nurbs->minimum_weight();
-      }
-    }
+    system.model(i).coordinate_lower_bounds(
+        bounds.segment(system.velocity_offset(i), system.model(i).velocity_count()));
   }
+  const std::vector<double> lower(bounds.data(), bounds.data() + n);
   problem.coordinate = velocity_to_coordinate(system);
   problem.variable.assign(static_cast<size_t>(n), 0);
   for (const int index : system.fixed_coordinates()) {

@@ -10,7 +10,6 @@
 
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
-#include "design/superquadric_fitting.h"
 #include "io/mesh_import.h"
 #include "core/error.h"
 
@@ -125,15 +124,30 @@ NurbsSurface fit_scene_surface(const Eigen::MatrixX3d& points, const SceneFit& f
   return model.surface(fit_dnurbs_surface(model, points, fit_settings(fit)).coordinates);
 }
 
-void fit_scene_superquadric(const Eigen::MatrixX3d& points, const SceneFit& fit,
-                            SceneSuperquadric& spec) {
-  SuperquadricFitSettings settings;
-  settings.max_evaluations = fit.max_evaluations;
-  const SuperquadricFitResult result = fit_superquadric(points, settings);
-  spec.shape = result.shape;
-  spec.centre = result.centre;
-  const Eigen::Quaterniond rotation = Eigen::Quaterniond(result.rotation).normalized();
-  spec.orientation = Eigen::Vector4d(rotation.w(), rotation.x(), rotation.y(), rotation.z());
+void fit_initial_shapes(Scene& scene) {
+  for (size_t i = 0; i < scene.models.size(); ++i) {
+    SceneModelSpec& spec = *scene.models[i].spec;
+    const SceneFit* fit = spec.pending_fit();
+    if (fit == nullptr) {
+      continue;
+    }
+    const std::string path = scene.source + ": models[" + std::to_string(i) + "].fit";
+    std::filesystem::path file = fit->points;
+    if (file.is_relative()) {
+      file = scene.directory / file;
+    }
+    Eigen::MatrixX3d points;
+    try {
+      points = read_fit_points(file);
+    } catch (const Error& error) {
+      throw make_error(path, ".points: ", error.what());
+    }
+    try {
+      spec.run_fit(points);
+    } catch (const Error& error) {
+      throw make_error(path, ": ", error.what());
+    }
+  }
 }
 
 }  // namespace dnurbs

@@ -1,6 +1,7 @@
 #pragma once
 // The "fit" key of scene models (docs/scene-format.md): a model's initial shape fitted to points
-// (issue 9) with the fitters of design/, so that a scan can be fitted and then sculpted.
+// with the fitters of design/, so that a scan can be fitted and then sculpted. Parsing a scene
+// does not fit: fit_initial_shapes does, as its own step.
 
 #include <filesystem>
 
@@ -9,6 +10,7 @@
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
 #include "io/scene.h"
+#include "io/scene_spec.h"
 
 namespace dnurbs {
 
@@ -31,8 +33,10 @@ NurbsCurve fit_scene_curve(const Eigen::MatrixX3d& points, const SceneFit& fit,
 NurbsSurface fit_scene_surface(const Eigen::MatrixX3d& points, const SceneFit& fit,
                                const DNurbsSurfaceMaterial& material,
                                const DNurbsSettings& settings);
-/// Sets spec.shape, spec.centre and spec.orientation to the fit_superquadric result.
-void fit_scene_superquadric(const Eigen::MatrixX3d& points, const SceneFit& fit,
-                            SceneSuperquadric& spec);
+/// Runs the pending "fit" of every model of the scene (SceneModelSpec::pending_fit): reads its
+/// points (resolved against scene.directory) and fits the initial shape. Throws Error
+/// "<source>: models[i].fit.points: ..." when the points cannot be read and
+/// "<source>: models[i].fit: ..." when the fitter fails. A scene without fits is unchanged.
+void fit_initial_shapes(Scene& scene);
 
 }  // namespace dnurbs

@@ -3,30 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 
-#include "constraints/point_constraints.h"
-#include "constraints/surface_constraints.h"
-#include "constraints/target_trajectory.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/dnurbs/local_sculpting.h"
-#include "dynamics/grid/pde_surface.h"
-#include "dynamics/grid/snake.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "io/scene_materials.h"
-#include "surface/grid.h"
-#include "surface/node_chain.h"
-#include "surface/tessellation.h"
+#include "core/fixed_coordinates.h"
+#include "core/kronecker.h"
+#include "dynamics/core/model_tessellation.h"
+#include "io/scene_fit.h"
 
 namespace dnurbs {
 namespace {
@@ -48,276 +35,38 @@ std::string indexed(const char* list, size_t i) {
   throw Error(text);
 }
 
-// A schedule as a function of time (the spline is built once)
-VectorOfTime vector_of_time(const VectorSchedule& schedule) {
-  if (schedule.times.empty()) {
-    const Eigen::Vector3d value = schedule.values.front();
-    return [value](double) { return value; };
-  }
-  auto trajectory = std::make_shared<TargetTrajectory>(
-      TargetTrajectory::keyframes(schedule.times, schedule.values));
-  return [trajectory](double t) { return trajectory->position(t); };
-}
-
-ScalarOfTime scalar_of_time(const ScalarSchedule& schedule) {
-  VectorSchedule vector;
-  vector.times = schedule.times;
-  for (double v : schedule.values) {
-    vector.values.emplace_back(v, 0.0, 0.0);
-  }
-  VectorOfTime f = vector_of_time(vector);
-  return [f](double t) { return f(t).x(); };
-}
-
-TargetTrajectory trajectory(const VectorSchedule& schedule) {
-  if (schedule.times.empty()) {
-    return TargetTrajectory::fixed(schedule.values.front());
-  }
-  return TargetTrajectory::keyframes(schedule.times, schedule.values);
-}
-
-// A force that acts while start <= t < end
-Force windowed(Force force, double start, double end) {
-  return [force = std::move(force), start, end](const Model& model, double time, ConstVectorRef q,
-                                                ConstVectorRef qd, VectorRef f) {
-    if (time >= start && time < end) {
-      force(model, time, q, qd, f);
-    }
-  };
-}
-
-void fix_points(Model& model, const std::vector<int>& points) {
-  if (auto* dnurbs = dynamic_cast<DNurbsModel*>(&model)) {
-    for (int i : points) {
-      if (i >= dnurbs->control_point_count()) {
-        throw make_error("control point ", i, " does not exist (the model has ",
-                         dnurbs->control_point_count(), ")");
-      }
-      dnurbs->fix_control_point(i);
-    }
-    return;
-  }
-  const int nodes = model.coordinate_count() / 3;
-  for (int i : points) {
-    if (i >= nodes) {
-      throw make_error("node ", i, " does not exist (the model has ", nodes, ")");
-    }
-    const int offset = model.control_point_offset(i);
-    for (int k = 0; k < 3; ++k) {
-      model.fix_coordinate(offset + k);
-    }
-  }
-}
-
+// The model of a scene model: its type's model with the boundary conditions applied.
 std::unique_ptr<Model> build_model(const SceneModel& spec) {
-  std::unique_ptr<Model> model;
-  if (const auto* c = std::get_if<SceneDNurbsCurve>(&spec.spec)) {
-    model = std::make_unique<DNurbsCurve>(
-        c->curve,
-        dnurbs_curve_material(c->mass_density, c->damping_density, c->tension, c->rigidity),
-        dnurbs_settings(c->settings));
-  } else if (const auto* s = std::get_if<SceneDNurbsSurface>(&spec.spec)) {
-    const Eigen::Matrix<double, 5, 1> stiffness =
-        (Eigen::Matrix<double, 5, 1>() << s->a10, s->a01, s->b20, s->b11, s->b02).finished();
-    auto surface = std::make_unique<DNurbsSurface>(
-        s->surface, dnurbs_surface_material(s->mass_density, s->damping_density, stiffness),
-        dnurbs_settings(s->settings));
-    if (spec.boundary.clamp_border) {
-      surface->fix_border();
-    }
-    model = std::move(surface);
-  } else if (const auto* sq = std::get_if<SceneSuperquadric>(&spec.spec)) {
-    DeformableSuperquadricSettings settings;
-    settings.parts = sq->parts == "rigid"    ? DeformableSuperquadricParts::rigid()
-                     : sq->parts == "global" ? DeformableSuperquadricParts::global()
-                                             : DeformableSuperquadricParts::full();
-    settings.mass_density = sq->mass_density;
-    settings.damping_alpha = sq->damping_alpha;
-    settings.damping_beta = sq->damping_beta;
-    settings.shape_stiffness = SuperquadricShapeParameters::Constant(sq->shape_stiffness);
-    settings.local_stiffness = {sq->local_stiffness.x(), sq->local_stiffness.y(),
-                                sq->local_stiffness.z()};
-    settings.mesh_cells_u = sq->mesh_cells_u;
-    settings.mesh_cells_v = sq->mesh_cells_v;
-    settings.quadrature_points = sq->quadrature_points;
-    settings.regularization = sq->regularization;
-    const Eigen::Quaterniond orientation(sq->orientation(0), sq->orientation(1), sq->orientation(2),
-                                         sq->orientation(3));
-    model =
-        std::make_unique<DeformableSuperquadricModel>(sq->shape, sq->centre, orientation, settings);
-  } else if (const auto* t = std::get_if<SceneTerzopoulosSurface>(&spec.spec)) {
-    const Grid grid(t->grid.nodes_u, t->grid.nodes_v, t->grid.spacing, 3);
-    TerzopoulosMaterial material;
-    material.mass_density = t->mass_density;
-    material.damping_density = t->damping_density;
-    material.eta = t->eta;
-    material.xi = t->xi;
-    TerzopoulosSettings settings;
-    settings.normal =
-        t->normal == "classic" ? NormalApproximation::kClassic : NormalApproximation::kChristoffel;
-    settings.delta = t->delta;
-    auto surface = std::make_unique<TerzopoulosSurface>(
-        grid, flat_grid_positions(grid, t->grid.origin, t->grid.axis_u, t->grid.axis_v), material,
-        settings);
-    if (spec.boundary.clamp_border) {
-      surface->clamp_border();
-    }
-    model = std::move(surface);
-  } else if (const auto* p = std::get_if<ScenePdeSurface>(&spec.spec)) {
-    const Grid grid(p->grid.nodes_u, p->grid.nodes_v, p->grid.spacing, 3);
-    PdeSurfaceMaterial material;
-    material.b = p->b;
-    material.c = p->c;
-    material.d = p->d;
-    material.density = p->density;
-    material.damping = p->damping;
-    material.su0 = p->su0;
-    material.su1 = p->su1;
-    material.sv0 = p->sv0;
-    material.sv1 = p->sv1;
-    std::vector<DeformationRegion> regions;
-    for (size_t r = 0; r < p->region_centres.size(); ++r) {
-      regions.push_back({p->region_centres[r], p->region_radii[r]});
-    }
-    model = std::make_unique<PdeSurface>(
-        grid, flat_grid_positions(grid, p->grid.origin, p->grid.axis_u, p->grid.axis_v), material,
-        regions);
-  } else {
-    const auto& snake = std::get<SceneSnake>(spec.spec);
-    const NodeChain chain(static_cast<int>(snake.nodes.size()), snake.closed);
-    NodePositions nodes(static_cast<Eigen::Index>(snake.nodes.size()), 3);
-    for (size_t i = 0; i < snake.nodes.size(); ++i) {
-      nodes.row(static_cast<Eigen::Index>(i)) = snake.nodes[i].transpose();
-    }
-    SnakeMaterial material;
-    material.mass_density = snake.mass_density;
-    material.damping_density = snake.damping_density;
-    material.constant_tension = snake.tension;
-    material.constant_rigidity = snake.rigidity;
-    model = std::make_unique<Snake>(chain, nodes, material);
+  std::unique_ptr<Model> model = spec.spec->build();
+  if (spec.boundary.clamp_border) {
+    model->fix_border();
   }
-  fix_points(*model, spec.boundary.fixed_points);
+  for (const int i : spec.boundary.fixed_points) {
+    model->fix_point(i);
+  }
   return model;
 }
 
-// 1 % of the diagonal of a point set's bounding box (tube radius of curve meshes)
-double tube_radius(const Eigen::MatrixX3d& points) {
-  const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
-  return diagonal > 0.0 ? 0.01 * diagonal : 0.01;
-}
-
-int segments(int resolution, double scale, int minimum) {
-  return std::max(minimum, static_cast<int>(std::lround(scale * resolution)));
-}
-
-// A (u, v) lattice of model points: nu by nv samples, v periodic (no repeated seam) if asked
-TriangleMesh sampled_mesh(const Model& model, ConstVectorRef q, double u0, double u1, double v0,
-                          double v1, int cells_u, int cells_v, bool periodic_v,
-                          const std::string& name) {
-  const int nu = cells_u + 1;
-  const int nv = periodic_v ? cells_v : cells_v + 1;
-  TriangleMesh mesh;
-  mesh.name = name;
-  mesh.vertices.resize(nu * nv, 3);
-  mesh.uv.resize(nu * nv, 2);
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const Eigen::Vector2d u(u0 + (u1 - u0) * i / cells_u, v0 + (v1 - v0) * j / cells_v);
-      mesh.vertices.row(i * nv + j) = model.position(q, u).transpose();
-      mesh.uv.row(i * nv + j) = u.transpose();
-    }
-  }
-  mesh.triangles.resize(2 * cells_u * cells_v, 3);
-  int t = 0;
-  for (int i = 0; i < cells_u; ++i) {
-    for (int j = 0; j < cells_v; ++j) {
-      const int a = i * nv + j;
-      const int b = (i + 1) * nv + j;
-      const int c = (i + 1) * nv + (j + 1) % nv;
-      const int d = i * nv + (j + 1) % nv;
-      mesh.triangles.row(t++) << a, b, c;
-      mesh.triangles.row(t++) << a, c, d;
-    }
-  }
-  return mesh;
-}
-
-// A polyline of nodes as a degree-1 NURBS curve (for the tube mesh of a snake)
-NurbsCurve polyline(const NodePositions& nodes, bool closed) {
-  const int n = static_cast<int>(nodes.rows());
-  std::vector<double> knots;
-  if (closed) {
-    for (int i = 0; i <= n; ++i) {
-      knots.push_back(static_cast<double>(i) / n);
-    }
-    return NurbsCurve(KnotVector::periodic(1, knots), nodes);
-  }
-  knots.push_back(0.0);
-  for (int i = 0; i < n; ++i) {
-    knots.push_back(static_cast<double>(i) / (n - 1));
-  }
-  knots.push_back(1.0);
-  return NurbsCurve(KnotVector(1, knots), nodes);
-}
-
 // Local sculpting of model `index` (boundary.local_sculpting_margin >= 0): the parameters and
-// control points its forces and constraints act on; gravity, pressure and curve-on-surface
-// constraints act everywhere, and then nothing is frozen.
+// control points its forces and constraints act on; where one acts everywhere on the model
+// (gravity, pressure, a curve on a surface), nothing is frozen.
 void freeze_outside_scene_region(const Scene& scene, int index, Model& model) {
   SculptedRegion region;
   bool everywhere = false;
   for (const SceneForce& force : scene.forces) {
-    if (const auto* p = std::get_if<ScenePointForce>(&force.spec); p && p->model == index) {
-      region.parameters.push_back(p->at);
-    } else if (const auto* s = std::get_if<SceneSpringForce>(&force.spec); s && s->model == index) {
-      region.parameters.push_back(s->at);
-    } else if (const auto* c = std::get_if<SceneControlPointForce>(&force.spec);
-               c && c->model == index) {
-      region.control_points.insert(region.control_points.end(), c->control_points.begin(),
-                                   c->control_points.end());
-    } else if (const auto* g = std::get_if<SceneGravity>(&force.spec)) {
-      everywhere = everywhere || g->model == -1 || g->model == index;
-    } else if (const auto* pressure = std::get_if<ScenePressure>(&force.spec)) {
-      everywhere = everywhere || pressure->model == index;
-    }
+    everywhere = force.spec->add_to_region(index, region) || everywhere;
   }
   for (const SceneConstraint& constraint : scene.constraints) {
-    if (const auto* t = std::get_if<ScenePointTargetConstraint>(&constraint.spec);
-        t && t->model == index) {
-      region.parameters.push_back(t->at);
-    } else if (const auto* pp = std::get_if<ScenePointToPointConstraint>(&constraint.spec)) {
-      if (pp->model_a == index) {
-        region.parameters.push_back(pp->at_a);
-      }
-      if (pp->model_b == index) {
-        region.parameters.push_back(pp->at_b);
-      }
-    } else if (const auto* h = std::get_if<SceneHingeConstraint>(&constraint.spec)) {
-      if (h->model_a == index) {
-        region.parameters.insert(region.parameters.end(), {h->axis_a0, h->axis_a1});
-      }
-      if (h->model_b == index) {
-        region.parameters.insert(region.parameters.end(), {h->axis_b0, h->axis_b1});
-      }
-    } else if (const auto* c = std::get_if<SceneControlPointConstraint>(&constraint.spec);
-               c && c->model == index) {
-      region.control_points.push_back(c->control_point);
-    } else if (const auto* n = std::get_if<SceneSurfaceNormalConstraint>(&constraint.spec);
-               n && n->model == index) {
-      region.parameters.push_back(n->at);
-    } else if (const auto* cs = std::get_if<SceneCurveOnSurfaceConstraint>(&constraint.spec)) {
-      everywhere = everywhere || cs->curve_model == index || cs->surface_model == index;
-    }
+    everywhere = constraint.spec->add_to_region(index, region) || everywhere;
   }
-  if (everywhere) {
-    return;
+  if (!everywhere) {
+    model.freeze_outside(region,
+                         scene.models[static_cast<size_t>(index)].boundary.local_sculpting_margin);
   }
-  const int margin = scene.models[static_cast<size_t>(index)].boundary.local_sculpting_margin;
-  if (auto* surface = dynamic_cast<DNurbsSurface*>(&model)) {
-    freeze_outside_sculpted_region(*surface, region, margin);
-  } else if (auto* curve = dynamic_cast<DNurbsCurve*>(&model)) {
-    freeze_outside_sculpted_region(*curve, region, margin);
-  }
+}
+
+int segments(int resolution, double scale, int minimum) {
+  return std::max(minimum, static_cast<int>(std::lround(scale * resolution)));
 }
 
 // Sizes of a symmetric pattern and of its LDL^T factor, and the work of one factorisation.
@@ -360,31 +109,6 @@ FactorSize factor_size(const SparseMatrix& matrix) {
   return size;
 }
 
-// The rows and columns of `matrix` whose index is not in `fixed` (sorted): the system the
-// integrators solve once the fixed coordinates are eliminated
-SparseMatrix free_block(const SparseMatrix& matrix, const std::vector<int>& fixed) {
-  std::vector<int> position(static_cast<size_t>(matrix.rows()), -1);
-  int free_count = 0;
-  for (int i = 0; i < matrix.rows(); ++i) {
-    if (!std::binary_search(fixed.begin(), fixed.end(), i)) {
-      position[static_cast<size_t>(i)] = free_count++;
-    }
-  }
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int k = 0; k < matrix.outerSize(); ++k) {
-    for (SparseMatrix::InnerIterator it(matrix, k); it; ++it) {
-      const int row = position[static_cast<size_t>(it.row())];
-      const int column = position[static_cast<size_t>(it.col())];
-      if (row >= 0 && column >= 0) {
-        entries.emplace_back(row, column, it.value());
-      }
-    }
-  }
-  SparseMatrix block(free_count, free_count);
-  block.setFromTriplets(entries.begin(), entries.end());
-  return block;
-}
-
 // Sizes and the work of one solve of a model at its initial state, fixed coordinates eliminated
 SceneModelCost model_cost(const Model& model) {
   SceneModelCost c;
@@ -396,16 +120,14 @@ SceneModelCost model_cost(const Model& model) {
   c.constant_matrices = model.matrices_are_constant();
   c.kronecker_block = model.kronecker_block_size();
   ModelMatrices matrices;
-  if (c.kronecker_block > 0 && model.scalar_matrices() != nullptr) {
+  const std::optional<std::vector<int>> nodes =
+      c.kronecker_block > 0 ? fixed_nodes(fixed, c.kronecker_block) : std::nullopt;
+  int unknowns = model.velocity_count();
+  if (nodes && model.scalar_matrices() != nullptr) {
+    // The scalar matrix, a node eliminated when all of its x, y, z are fixed
     matrices = *model.scalar_matrices();
-    // A scalar node is eliminated when all of its x, y, z are fixed
-    std::vector<int> fixed_nodes;
-    for (size_t k = 0; k + 2 < fixed.size(); ++k) {
-      if (fixed[k] % 3 == 0 && fixed[k + 1] == fixed[k] + 1 && fixed[k + 2] == fixed[k] + 2) {
-        fixed_nodes.push_back(fixed[k] / 3);
-      }
-    }
-    fixed = fixed_nodes;
+    fixed = *nodes;
+    unknowns /= c.kronecker_block;
   } else {
     model.assemble_matrices(model.initial_coordinates(), matrices);
   }
@@ -419,7 +141,7 @@ SceneModelCost model_cost(const Model& model) {
   // The christoffel Terzopoulos stiffness is not symmetric: factor its symmetric pattern
   const SparseMatrix transposed = sum.transpose();
   sum += transposed;
-  const FactorSize size = factor_size(free_block(sum, fixed));
+  const FactorSize size = factor_size(FreeCoordinates(unknowns, fixed).reduce(sum));
   c.matrix_non_zeros = size.matrix_non_zeros;
   c.factor_non_zeros = size.factor_non_zeros;
   // One solve: a forward and a backward substitution per right-hand side with a constant
@@ -430,35 +152,35 @@ SceneModelCost model_cost(const Model& model) {
   return c;
 }
 
-// The path a scene would pay for without the library's automatic choice for this model, and
-// what that choice is; nullopt when the model already takes the naive path
-std::optional<std::pair<SceneModel, std::string>> naive_variant(const SceneModel& spec) {
-  SceneModel naive = spec;
-  if (auto* c = std::get_if<SceneDNurbsCurve>(&naive.spec); c && !c->settings.free_weights) {
-    c->settings.free_weights = true;
-    return std::pair{naive, std::string("fixed weights (naive: free weights)")};
-  }
-  if (auto* s = std::get_if<SceneDNurbsSurface>(&naive.spec); s && !s->settings.free_weights) {
-    s->settings.free_weights = true;
-    return std::pair{naive, std::string("fixed weights (naive: free weights)")};
-  }
-  if (auto* sq = std::get_if<SceneSuperquadric>(&naive.spec); sq && sq->parts != "full") {
-    const std::string choice = sq->parts + " parts only (naive: rigid, global and local parts)";
-    sq->parts = "full";
-    return std::pair{naive, choice};
-  }
-  if (auto* p = std::get_if<ScenePdeSurface>(&naive.spec); p && !p->region_centres.empty()) {
-    p->region_centres.clear();
-    p->region_radii.clear();
-    return std::pair{naive, std::string("deformation regions (naive: every grid node)")};
-  }
-  return std::nullopt;
-}
-
 }  // namespace
 
 SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
-  // Models and boundary conditions
+  fit_initial_shapes(scene_);
+  add_models();
+  add_forces();
+  add_constraints();
+  // Probes: the model must be able to place the point
+  for (size_t i = 0; i < scene_.probes.size(); ++i) {
+    try {
+      const Eigen::Vector3d x = system_.position(scene_.probes[i].model, scene_.probes[i].at);
+      if (!x.allFinite()) {
+        throw make_error("the probe's position is not finite");
+      }
+    } catch (const Error& error) {
+      fail(scene_, indexed("probes", i), error.what());
+    }
+  }
+  IntegratorSettings settings;
+  settings.scheme = parse_integrator_scheme(scene_.integrator.scheme);
+  settings.newmark_beta = scene_.integrator.newmark_beta;
+  settings.newmark_gamma = scene_.integrator.newmark_gamma;
+  settings.newton_iterations = scene_.integrator.newton_iterations;
+  settings.newton_tolerance = scene_.integrator.newton_tolerance;
+  integrator_ = Integrator(settings);
+  hash_ = scene_state_hash(scene_);
+}
+
+void SceneSimulation::add_models() {
   for (size_t i = 0; i < scene_.models.size(); ++i) {
     const SceneModel& spec = scene_.models[i];
     std::unique_ptr<Model> model;
@@ -475,119 +197,38 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
       }
     }
     system_.add_model(*model);
-    if (const auto* c = std::get_if<SceneDNurbsCurve>(&spec.spec)) {
-      tube_radii_.push_back(tube_radius(c->curve.control_points()));
-    } else if (const auto* s = std::get_if<SceneSnake>(&spec.spec)) {
-      Eigen::MatrixX3d nodes(static_cast<Eigen::Index>(s->nodes.size()), 3);
-      for (size_t k = 0; k < s->nodes.size(); ++k) {
-        nodes.row(static_cast<Eigen::Index>(k)) = s->nodes[k].transpose();
-      }
-      tube_radii_.push_back(tube_radius(nodes));
-    } else {
-      tube_radii_.push_back(0.0);
-    }
+    // Curves are meshed as tubes of one radius for the whole run (frames do not flicker)
+    tube_radii_.push_back(model->parametric_dimension() == 1
+                              ? curve_tube_radius(*model, model->initial_coordinates())
+                              : 0.0);
   }
-  // Forces
+}
+
+void SceneSimulation::add_forces() {
   for (size_t i = 0; i < scene_.forces.size(); ++i) {
     const SceneForce& force = scene_.forces[i];
-    const std::string path = indexed("forces", i);
     try {
-      if (const auto* p = std::get_if<ScenePointForce>(&force.spec)) {
-        system_.add_force(p->model, windowed(point_force(p->at, vector_of_time(p->force)),
-                                             force.start, force.end));
-      } else if (const auto* s = std::get_if<SceneSpringForce>(&force.spec)) {
-        system_.add_force(s->model,
-                          windowed(spring_force(s->at, vector_of_time(s->target), s->stiffness),
-                                   force.start, force.end));
-      } else if (const auto* c = std::get_if<SceneControlPointForce>(&force.spec)) {
-        const Model& model = system_.model(c->model);
-        for (size_t k = 0; k < c->control_points.size(); ++k) {
-          const int index = c->control_points[k];
-          try {
-            const int offset = model.control_point_offset(index);
-            if (offset + 3 > model.velocity_count()) {
-              throw make_error("control point ", index, " does not exist");
-            }
-          } catch (const Error& error) {
-            fail(scene_, path + ".control_points[" + std::to_string(k) + "]", error.what());
-          }
-        }
-        system_.add_force(c->model,
-                          windowed(control_point_force(c->control_points, vector_of_time(c->force)),
-                                   force.start, force.end));
-      } else if (const auto* g = std::get_if<SceneGravity>(&force.spec)) {
-        for (int m = 0; m < system_.model_count(); ++m) {
-          if (g->model < 0 || g->model == m) {
-            system_.add_force(m, windowed(gravity(g->acceleration), force.start, force.end));
-          }
-        }
-      } else {
-        const auto& p = std::get<ScenePressure>(force.spec);
-        system_.add_force(p.model,
-                          windowed(pressure(scalar_of_time(p.pressure)), force.start, force.end));
-      }
+      force.spec->apply(system_, force.start, force.end);
+    } catch (const SceneKeyError& error) {
+      fail(scene_, indexed("forces", i) + error.key(), error.what());
     } catch (const Error& error) {
-      const std::string message = error.what();
-      if (message.starts_with(scene_.source + ": ")) {
-        throw;
-      }
-      fail(scene_, path, message);
+      fail(scene_, indexed("forces", i), error.what());
     }
   }
-  // Constraints
+}
+
+void SceneSimulation::add_constraints() {
   for (size_t i = 0; i < scene_.constraints.size(); ++i) {
-    const SceneConstraint& c = scene_.constraints[i];
+    const SceneConstraint& constraint = scene_.constraints[i];
     BaumgarteParameters parameters;
-    parameters.alpha = c.alpha;
-    parameters.beta = c.beta;
+    parameters.alpha = constraint.alpha;
+    parameters.beta = constraint.beta;
     try {
-      if (const auto* t = std::get_if<ScenePointTargetConstraint>(&c.spec)) {
-        solver_.add(system_, PointTargetConstraint(t->model, t->at, trajectory(t->target)),
-                    parameters);
-      } else if (const auto* p = std::get_if<ScenePointToPointConstraint>(&c.spec)) {
-        solver_.add(system_, PointToPointConstraint(p->model_a, p->at_a, p->model_b, p->at_b),
-                    parameters);
-      } else if (const auto* h = std::get_if<SceneHingeConstraint>(&c.spec)) {
-        solver_.add(
-            system_,
-            HingeConstraint(h->model_a, h->axis_a0, h->axis_a1, h->model_b, h->axis_b0, h->axis_b1),
-            parameters);
-      } else if (const auto* cp = std::get_if<SceneControlPointConstraint>(&c.spec)) {
-        solver_.add(system_, ControlPointConstraint(cp->model, cp->control_point, cp->target),
-                    parameters);
-      } else if (const auto* n = std::get_if<SceneSurfaceNormalConstraint>(&c.spec)) {
-        solver_.add(system_, SurfaceNormalConstraint(n->model, n->at, n->direction), parameters);
-      } else {
-        const auto& cos = std::get<SceneCurveOnSurfaceConstraint>(c.spec);
-        for (auto& constraint : curve_on_surface_constraints(system_, cos.curve_model,
-                                                             cos.surface_model, cos.samples)) {
-          solver_.add(system_, std::move(constraint), parameters);
-        }
-      }
+      constraint.spec->add(solver_, system_, parameters);
     } catch (const Error& error) {
       fail(scene_, indexed("constraints", i), error.what());
     }
   }
-  // Probes: the model must be able to place the point
-  for (size_t i = 0; i < scene_.probes.size(); ++i) {
-    try {
-      const Eigen::Vector3d x = system_.position(scene_.probes[i].model, scene_.probes[i].at);
-      if (!x.allFinite()) {
-        throw make_error("the probe's position is not finite");
-      }
-    } catch (const Error& error) {
-      fail(scene_, indexed("probes", i), error.what());
-    }
-  }
-  // Integrator
-  IntegratorSettings settings;
-  settings.scheme = parse_integrator_scheme(scene_.integrator.scheme);
-  settings.newmark_beta = scene_.integrator.newmark_beta;
-  settings.newmark_gamma = scene_.integrator.newmark_gamma;
-  settings.newton_iterations = scene_.integrator.newton_iterations;
-  settings.newton_tolerance = scene_.integrator.newton_tolerance;
-  integrator_ = Integrator(settings);
-  hash_ = scene_state_hash(scene_);
 }
 
 void SceneSimulation::step() {
@@ -672,31 +313,18 @@ std::vector<TriangleMesh> SceneSimulation::meshes(int resolution) const {
     const Model& model = system_.model(i);
     const Eigen::VectorXd q = system_.coordinates(i);
     const Eigen::Vector2d& scale = spec.resolution_scale;
-    if (const auto* surface = dynamic_cast<const DNurbsSurface*>(&model)) {
-      const NurbsSurface shape = surface->surface(q);
-      result.push_back(tessellate_surface(
-          shape, segments(resolution, scale.x(), shape.knots_u().is_periodic() ? 3 : 1),
-          segments(resolution, scale.y(), shape.knots_v().is_periodic() ? 3 : 1), spec.name));
-    } else if (const auto* curve = dynamic_cast<const DNurbsCurve*>(&model)) {
-      result.push_back(tessellate_curve_tube(curve->curve(q),
-                                             segments(4 * resolution, scale.x(), 3),
-                                             tube_radii_[static_cast<size_t>(i)], 12, spec.name));
-    } else if (const auto* terzopoulos = dynamic_cast<const TerzopoulosSurface*>(&model)) {
-      result.push_back(
-          grid_triangle_mesh(terzopoulos->grid(), terzopoulos->positions(q), spec.name));
-    } else if (const auto* pde = dynamic_cast<const PdeSurface*>(&model)) {
-      result.push_back(grid_triangle_mesh(pde->grid(), pde->positions(q), spec.name));
-    } else if (const auto* snake = dynamic_cast<const Snake*>(&model)) {
-      result.push_back(tessellate_curve_tube(polyline(snake->positions(q), snake->chain().closed()),
-                                             segments(4 * resolution, scale.x(), 3),
-                                             tube_radii_[static_cast<size_t>(i)], 12, spec.name));
+    ModelTessellationSettings settings;
+    if (model.parametric_dimension() == 1) {
+      // Curves: four times the surface resolution along the curve, a tube of 12 sides
+      settings.segments_u = segments(4 * resolution, scale.x(), 3);
+      settings.tube_radius = tube_radii_[static_cast<size_t>(i)];
+      settings.tube_sides = 12;
     } else {
-      // Superquadric: u latitude in [-pi/2, pi/2], v longitude in [-pi, pi) (periodic)
-      const double pi = std::numbers::pi;
-      result.push_back(sampled_mesh(model, q, -pi / 2, pi / 2, -pi, pi,
-                                    segments(resolution, scale.x(), 2),
-                                    segments(resolution, scale.y(), 3), true, spec.name));
+      const ParameterDomain domain = model.parameter_domain(q);
+      settings.segments_u = segments(resolution, scale.x(), minimum_segments(domain, false));
+      settings.segments_v = segments(resolution, scale.y(), minimum_segments(domain, true));
     }
+    result.push_back(tessellate_model(model, q, settings, spec.name));
   }
   return result;
 }
@@ -706,15 +334,7 @@ void SceneSimulation::set_coordinates(const Eigen::VectorXd& q) {
 }
 
 std::optional<Shape> SceneSimulation::shape(int i) const {
-  const Model& model = system_.model(i);
-  const Eigen::VectorXd q = system_.coordinates(i);
-  if (const auto* surface = dynamic_cast<const DNurbsSurface*>(&model)) {
-    return Shape(surface->surface(q));
-  }
-  if (const auto* curve = dynamic_cast<const DNurbsCurve*>(&model)) {
-    return Shape(curve->curve(q));
-  }
-  return std::nullopt;
+  return system_.model(i).exact_shape(system_.coordinates(i));
 }
 
 Checkpoint SceneSimulation::checkpoint() const {
@@ -760,8 +380,10 @@ std::vector<SceneModelCost> SceneSimulation::cost() const {
     SceneModelCost c = model_cost(system_.model(i));
     c.name = spec.name;
     c.type = scene_model_type(spec);
-    if (const auto naive = naive_variant(spec)) {
-      const SceneModelCost naive_cost = model_cost(*build_model(naive->first));
+    if (auto naive = spec.spec->naive_variant()) {
+      SceneModel naive_model = spec;
+      naive_model.spec = std::move(naive->first);
+      const SceneModelCost naive_cost = model_cost(*build_model(naive_model));
       c.automatic_choice = naive->second;
       c.naive_active = naive_cost.velocities - naive_cost.fixed;
       c.naive_constant_matrices = naive_cost.constant_matrices;

@@ -66,8 +66,9 @@ struct SceneModelCost {
 
 class SceneSimulation {
  public:
-  /// Builds everything; throws Error "<source>: <json path>: <problem>" when the library
-  /// rejects a model, boundary condition, force or constraint.
+  /// Runs the scene's pending fits (fit_initial_shapes) and builds everything; throws Error
+  /// "<source>: <json path>: <problem>" when the library rejects a model, boundary condition,
+  /// force or constraint.
   explicit SceneSimulation(Scene scene);
 
   const Scene& scene() const { return scene_; }
@@ -93,7 +94,7 @@ class SceneSimulation {
   /// Sets the stacked coordinates (System order, e.g. a DesignResult's) with zero velocities at
   /// the current time; throws Error if the size is wrong or a value is not finite.
   void set_coordinates(const Eigen::VectorXd& q);
-  /// Model i's current shape if it is a D-NURBS curve or surface.
+  /// Model i's current exact shape (Model::exact_shape: D-NURBS curves and surfaces).
   std::optional<Shape> shape(int i) const;
 
   Checkpoint checkpoint() const;
@@ -105,6 +106,10 @@ class SceneSimulation {
   std::vector<SceneModelCost> cost() const;
 
  private:
+  void add_models();
+  void add_forces();
+  void add_constraints();
+
   Scene scene_;
   System system_;
   ConstraintSolver solver_;

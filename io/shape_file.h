@@ -14,15 +14,10 @@
 
 #include <filesystem>
 #include <string>
-#include <variant>
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "nurbs/shape.h"
 
 namespace dnurbs {
-
-/// What a shape file holds.
-using Shape = std::variant<NurbsCurve, NurbsSurface>;
 
 /// Parses shape JSON text. `source` names the text in messages (usually the file name).
 /// Throws Error "<source>: <json path>: <what was expected>" for unparseable JSON (with line and

@@ -80,6 +80,13 @@ std::array<std::pair<int, double>, 4> Grid::bilinear_weights(const Eigen::Vector
            {index(i0 + 1, j0 + 1), s * t}}};
 }
 
+ParameterDomain grid_parameter_domain(const Grid& grid) {
+  ParameterDomain domain;
+  domain.u_max = (grid.nu() - 1) * grid.spacing();
+  domain.v_max = (grid.nv() - 1) * grid.spacing();
+  return domain;
+}
+
 NodePositions flat_grid_positions(const Grid& grid, const Eigen::Vector3d& origin,
                                   const Eigen::Vector3d& axis_u, const Eigen::Vector3d& axis_v) {
   if (!origin.allFinite() || !axis_u.allFinite() || !axis_v.allFinite()) {

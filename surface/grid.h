@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "surface/parametric_surface.h"
 #include "surface/triangle_mesh.h"
 
 namespace dnurbs {
@@ -64,6 +65,9 @@ class Grid {
 NodePositions flat_grid_positions(const Grid& grid, const Eigen::Vector3d& origin,
                                   const Eigen::Vector3d& axis_u = Eigen::Vector3d::UnitX(),
                                   const Eigen::Vector3d& axis_v = Eigen::Vector3d::UnitY());
+
+/// The grid's parameter rectangle [0, (nu - 1) h] x [0, (nv - 1) h] (no closures).
+ParameterDomain grid_parameter_domain(const Grid& grid);
 
 /// x(u) by bilinear interpolation of the node positions.
 Eigen::Vector3d interpolate_grid(const Grid& grid, const NodePositions& positions,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {
@@ -243,28 +244,12 @@ Eigen::SparseMatrix<double> ParametricFeMesh::scalar_stiffness_matrix(
 
 Eigen::SparseMatrix<double> ParametricFeMesh::stiffness_matrix(
     const FeStiffnessCoefficients& coefficients, int points_per_direction) const {
-  return expand_to_three_dimensions(scalar_stiffness_matrix(coefficients, points_per_direction));
+  return kronecker_identity(scalar_stiffness_matrix(coefficients, points_per_direction), 3);
 }
 
 Eigen::SparseMatrix<double> ParametricFeMesh::scalar_mass_matrix(int points_per_direction) const {
   check_points(points_per_direction);
   return assemble_scalar(*this, {0.0, 0.0, 1.0}, points_per_direction);
-}
-
-Eigen::SparseMatrix<double> expand_to_three_dimensions(const Eigen::SparseMatrix<double>& scalar) {
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(3 * scalar.nonZeros()));
-  for (int column = 0; column < scalar.outerSize(); ++column) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(scalar, column); it; ++it) {
-      for (int k = 0; k < 3; ++k) {
-        entries.emplace_back(3 * static_cast<int>(it.row()) + k, 3 * static_cast<int>(it.col()) + k,
-                             it.value());
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> expanded(3 * scalar.rows(), 3 * scalar.cols());
-  expanded.setFromTriplets(entries.begin(), entries.end());
-  return expanded;
 }
 
 }  // namespace dnurbs

@@ -119,7 +119,4 @@ class ParametricFeMesh {
   double step_v_;
 };
 
-/// The Kronecker product k (x) I_3 of a scalar matrix, ordered as q_d.
-Eigen::SparseMatrix<double> expand_to_three_dimensions(const Eigen::SparseMatrix<double>& scalar);
-
 }  // namespace dnurbs

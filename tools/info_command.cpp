@@ -30,22 +30,11 @@ exit codes: 0 ok, 1 bad scene, 2 bad command line
 
 namespace {
 
-const char* force_type(const SceneForce& force) {
-  constexpr const char* kNames[] = {"point", "spring", "control_point", "gravity", "pressure"};
-  return kNames[force.spec.index()];
-}
-
 // A cost ratio with three significant digits
 std::string ratio(double value) {
   std::ostringstream text;
   text << std::setprecision(3) << value;
   return text.str();
-}
-
-const char* constraint_type(const SceneConstraint& constraint) {
-  constexpr const char* kNames[] = {"point_target",  "point_to_point", "hinge",
-                                    "control_point", "surface_normal", "curve_on_surface"};
-  return kNames[constraint.spec.index()];
 }
 
 }  // namespace
@@ -110,7 +99,7 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
       << (system.matrices_are_constant() ? "constant" : "state-dependent") << "\n";
   std::map<std::string, int> forces;
   for (const auto& force : scene.forces) {
-    ++forces[force_type(force)];
+    ++forces[force.spec->type()];
   }
   out << "forces: " << scene.forces.size();
   for (const auto& [type, count] : forces) {
@@ -119,7 +108,7 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
   out << (forces.empty() ? "" : ")") << "\n";
   std::map<std::string, int> constraints;
   for (const auto& constraint : scene.constraints) {
-    ++constraints[constraint_type(constraint)];
+    ++constraints[constraint.spec->type()];
   }
   out << "constraints: " << scene.constraints.size() << " (" << simulation.constraints().row_count()
       << " rows)";

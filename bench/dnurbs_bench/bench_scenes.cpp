@@ -102,7 +102,7 @@ System pushed_terzopoulos_sheet(double ramp_time) {
   material.eta << 0.1, 0.0, 0.0, 0.1;
   material.xi << 1e-3, 1e-3, 1e-3, 1e-3;
   TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), material);
-  sheet.clamp_border();
+  sheet.fix_border();
   System system(sheet);
   system.add_force(0, point_force(grid.parameter(n / 2, n / 2), [ramp_time](double t) {
                      return Eigen::Vector3d(0, 0, -0.01 * smooth_ramp(t, ramp_time));
@@ -113,7 +113,7 @@ System pushed_terzopoulos_sheet(double ramp_time) {
 System pushed_pde_surface(int nodes_per_side, bool region, double ramp_time) {
   const Grid grid(nodes_per_side, nodes_per_side, 1.0 / (nodes_per_side - 1));
   PdeSurfaceMaterial material;
-  material.damping = 20.0;
+  material.damping_density = 20.0;
   const Eigen::Vector3d centre(0.5, 0.5, 0.0);
   std::vector<DeformationRegion> regions;
   if (region) {

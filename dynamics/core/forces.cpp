@@ -103,4 +103,13 @@ Force pressure(double value) {
   return pressure([value](double) { return value; });
 }
 
+Force windowed(Force force, double start, double end) {
+  return [force = std::move(force), start, end](const Model& model, double time, ConstVectorRef q,
+                                                ConstVectorRef qd, VectorRef f) {
+    if (time >= start && time < end) {
+      force(model, time, q, qd, f);
+    }
+  };
+}
+
 }  // namespace dnurbs

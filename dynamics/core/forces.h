@@ -44,4 +44,7 @@ Force gravity(const Eigen::Vector3d& acceleration);
 Force pressure(ScalarOfTime pressure);
 Force pressure(double pressure);
 
+/// `force` while start <= t < end, nothing outside that window.
+Force windowed(Force force, double start, double end);
+
 }  // namespace dnurbs

@@ -51,6 +51,56 @@ int Model::control_point_offset(int i) const {
   throw make_error("control point ", i, " requested from a model without control points");
 }
 
+void Model::tangent_kinematics(ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
+                               const Eigen::Vector2d& /*u*/, TangentKinematics& /*tangents*/) const {
+  throw make_error("this model (parametric dimension ", parametric_dimension(),
+                   ") gives no surface tangents and their Jacobians");
+}
+
+void Model::semi_implicit_matrices(ConstVectorRef q, bool scalar, ModelMatrices& matrices) const {
+  if (scalar) {
+    if (scalar_matrices() == nullptr) {
+      throw make_error("this model has no scalar (node by node) matrices");
+    }
+    matrices = *scalar_matrices();
+  } else {
+    assemble_matrices(q, matrices);
+  }
+}
+
+int Model::velocity_coordinate(int velocity) const {
+  return coordinate_count() == velocity_count() ? velocity : -1;
+}
+
+void Model::coordinate_lower_bounds(VectorRef /*lower*/) const {}
+
+ParameterDomain Model::parameter_domain(ConstVectorRef /*q*/) const {
+  throw make_error("this model (parametric dimension ", parametric_dimension(),
+                   ") has no known parameter domain");
+}
+
+std::optional<Shape> Model::exact_shape(ConstVectorRef /*q*/) const { return std::nullopt; }
+
+void Model::fix_point(int i) {
+  const int nodes = coordinate_count() / 3;
+  if (i < 0 || i >= nodes) {
+    throw make_error("node ", i, " does not exist (the model has ", nodes, ")");
+  }
+  const int offset = control_point_offset(i);
+  for (int k = 0; k < 3; ++k) {
+    fix_coordinate(offset + k);
+  }
+}
+
+void Model::fix_border() {
+  throw make_error("this model has no border to fix (parametric dimension ",
+                   parametric_dimension(), ")");
+}
+
+int Model::freeze_outside(const SculptedRegion& /*region*/, int /*margin*/) {
+  throw make_error("this model does not support local sculpting");
+}
+
 void Model::fix_coordinate(int index) {
   if (index < 0 || index >= velocity_count()) {
     throw make_error("fixed coordinate index ", index, " is outside 0..", velocity_count() - 1);

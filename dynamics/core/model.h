@@ -1,24 +1,36 @@
 #pragma once
 // The Model contract (DESIGN.md, "The Model contract"): what every dynamic model gives the
-// integrators, forces and constraints. Seed 001 eq 1.24 in its general form
+// integrators, forces, constraints, optimizers, tessellation and scene files. Terzopoulos,
+// "Deformable Models: Classic, Topology-Adaptive and Generalized Formulations", eq. 1.24 in its
+// general form
 //
 //   M(q) qdd + D(q) qd - f_int(q) = f + g(q, qd),      f_int(q) = -K q for linear models,
 //
 // with all vectors in velocity space (size velocity_count()). Models are stateless evaluators:
 // the state (q, qd, t) lives in the System, and every evaluation takes the coordinates it is
 // evaluated at, so integrators can evaluate trial states (Newton iterations) and roll back.
+//
+// No library code outside a model's own files names a concrete model type: everything a layer
+// needs of a model is a virtual function here, with a default where a sensible one exists.
 
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "core/sparse_matrix.h"
+#include "dynamics/core/rigid_mass_properties.h"
+#include "dynamics/core/sculpted_region.h"
+#include "nurbs/shape.h"
+#include "surface/parametric_surface.h"
+#include "surface/triangle_mesh.h"
+
 namespace dnurbs {
 
-/// Column-major sparse matrix used by every dynamics API.
-using SparseMatrix = Eigen::SparseMatrix<double>;
 /// A read-only view of a coordinate or velocity vector (a segment of the System's state).
 using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
 /// A writable view of a velocity-space vector (a segment of a System-wide vector).
@@ -47,8 +59,33 @@ struct MaterialSample {
 /// gravity is mu g, pressure is p (x_u x x_v).
 using ForceDensity = std::function<Eigen::Vector3d(const MaterialSample&)>;
 
-/// The contract every dynamic model implements (D-NURBS curves and surfaces now; deformable
-/// superquadrics, grid surfaces and snakes later). A model is a value: clone() copies it.
+/// The parametric tangents S_u, S_v of a surface model at one material point and their
+/// kinematics, for constraints on the surface's orientation (a held normal).
+struct TangentKinematics {
+  Eigen::Vector3d su = Eigen::Vector3d::Zero();       ///< S_u at q
+  Eigen::Vector3d sv = Eigen::Vector3d::Zero();       ///< S_v at q
+  Eigen::Vector3d su_rate = Eigen::Vector3d::Zero();  ///< J_u qd
+  Eigen::Vector3d sv_rate = Eigen::Vector3d::Zero();  ///< J_v qd
+  Eigen::Vector3d su_bias = Eigen::Vector3d::Zero();  ///< Jdot_u qd (zero where J_u is constant)
+  Eigen::Vector3d sv_bias = Eigen::Vector3d::Zero();  ///< Jdot_v qd
+  /// The velocity-space columns (ascending) where J_u = dS_u/dq or J_v is non-zero, and those
+  /// columns of J_u and J_v (3 by #columns each).
+  std::vector<int> columns;
+  Eigen::Matrix3Xd ju;
+  Eigen::Matrix3Xd jv;
+};
+
+/// A free rigid body's view of a model, for the rigid-body integrator: its coordinates are
+/// [c (3) | unit quaternion (w, x, y, z) (4)] and its velocities [cdot (3) | body angular
+/// velocity (3)], its mass properties constant and its damping mass-proportional.
+struct RigidBodyProperties {
+  RigidMassProperties mass;   ///< reference mass properties (body frame)
+  double damping_alpha = 0.0;  ///< Rayleigh mass coefficient: D = alpha M
+};
+
+struct ModelTessellationSettings;
+
+/// The contract every dynamic model implements. A model is a value: clone() copies it.
 ///
 /// Sizes: q has coordinate_count() entries; velocities, forces and matrices live in velocity
 /// space of velocity_count() entries. They differ for models whose coordinates are not a vector
@@ -76,6 +113,10 @@ class Model {
   /// (zero where L does not depend on q). Constraint layers need it for their sigma term.
   virtual Eigen::Vector3d jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
                                                        const Eigen::Vector2d& u) const;
+  /// S_u, S_v at u with their Jacobians, rates and velocity-product terms (surface models that
+  /// support orientation constraints). Default: throws Error saying the model has none.
+  virtual void tangent_kinematics(ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u,
+                                  TangentKinematics& tangents) const;
 
   // Matrices and forces ---------------------------------------------------------------------
   /// True if M, D, K do not depend on q (then constant_matrices() is non-null and integrators
@@ -94,7 +135,7 @@ class Model {
   virtual const ModelMatrices* scalar_matrices() const { return nullptr; }
 
   /// Adds the internal (elastic) force f_int(q) = -dE/dq to `force` (size velocity_count()).
-  /// Default: -K(q) q, right for every model whose energy is (1/2) q^T K q.
+  /// Default: -K(q) q, right for every model whose energy is (1/2) q^T K(q) q.
   virtual void add_internal_force(ConstVectorRef q, VectorRef force) const;
   /// Elastic potential energy E(q) with f_int = -dE/dq. Default (1/2) q^T K(q) q.
   virtual double potential_energy(ConstVectorRef q) const;
@@ -109,6 +150,27 @@ class Model {
   virtual void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                                      VectorRef force) const = 0;
 
+  // What particular steppers and optimizers need ---------------------------------------------
+  /// The node block size of the semi-implicit step (Terzopoulos' matrix from the current
+  /// tensors, dynamics/integrators/semi_implicit_step.h): b when semi_implicit_matrices can
+  /// give scalar (nodes by nodes) matrices with the coordinates grouped b per node, 0 otherwise.
+  /// Default: kronecker_block_size().
+  virtual int semi_implicit_block_size() const { return kronecker_block_size(); }
+  /// The mass, damping and stiffness the semi-implicit step uses at q (f_int = -K q with K
+  /// frozen at q): scalar ones (nodes by nodes) when `scalar`, else velocity-space ones.
+  /// Default: scalar_matrices() when scalar, assemble_matrices(q) otherwise.
+  virtual void semi_implicit_matrices(ConstVectorRef q, bool scalar, ModelMatrices& matrices) const;
+  /// The coordinate index whose time derivative velocity v is, or -1 where velocity v has no
+  /// such coordinate (a body angular velocity). Default: v when the counts are equal, else -1.
+  virtual int velocity_coordinate(int velocity) const;
+  /// Lower bounds of the coordinates for optimizers (velocity-space indices, -inf where
+  /// unbounded, which `lower` holds on entry): D-NURBS free weights >= their minimum. Default:
+  /// leaves `lower` as it is.
+  virtual void coordinate_lower_bounds(VectorRef lower) const;
+  /// The model's rigid-body view if it is a free rigid body (RigidBodyProperties), else
+  /// nullopt (the default).
+  virtual std::optional<RigidBodyProperties> rigid_body() const { return std::nullopt; }
+
   // Coordinates -----------------------------------------------------------------------------
   /// q_out = q "+" dv, the coordinates reached by a velocity-space increment dv (size
   /// velocity_count()). Default: q + dv. Superquadrics advance their quaternion by the
@@ -119,15 +181,43 @@ class Model {
   /// weights above their minimum). Default: nothing.
   virtual void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const;
 
-  /// Velocity-space index of the first coordinate of control point i (models with control
-  /// points); throws Error otherwise.
+  /// Velocity-space index of the first coordinate of control point (or node) i; throws Error
+  /// for models without control points or nodes.
   virtual int control_point_offset(int i) const;
+
+  // Shape -----------------------------------------------------------------------------------
+  /// The parameter domain at q: (u, v) with its closures for surfaces, [u_min, u_max] (v
+  /// unused) with periodic_u for closed curves. Default: throws Error.
+  virtual ParameterDomain parameter_domain(ConstVectorRef q) const;
+  /// Which tangent cross product the outward unit normal follows. Default: S_u x S_v.
+  virtual NormalOrientation normal_orientation() const { return NormalOrientation::kSuCrossSv; }
+  /// The surface at q (surface models): default x(u, v) = position(q, (u, v)) over
+  /// parameter_domain(q) with difference normals and normal_orientation(); models with an exact
+  /// form (NURBS) override it. The returned surface owns copies of the model and q.
+  virtual ParametricSurface parametric_surface(ConstVectorRef q) const;
+  /// The exact shape at q when the model is a NURBS curve or surface (shape files, export, CAD
+  /// exchange); nullopt (the default) otherwise.
+  virtual std::optional<Shape> exact_shape(ConstVectorRef q) const;
+  /// A triangle mesh of the shape at q (the one tessellation path; the settings and the
+  /// default are documented in dynamics/core/model_tessellation.h). Models whose shape is a mesh
+  /// (grids) return it.
+  virtual TriangleMesh tessellate(ConstVectorRef q, const ModelTessellationSettings& settings,
+                                  std::string name) const;
 
   // Boundary conditions ---------------------------------------------------------------------
   /// Velocity-space indices held fixed (eliminated from every solve), sorted and unique.
   const std::vector<int>& fixed_coordinates() const { return fixed_coordinates_; }
   /// Fixes one velocity-space coordinate; throws Error naming the index if out of range.
   void fix_coordinate(int index);
+  /// Fixes point i: a control point's position (D-NURBS; a free weight stays free) or a node's
+  /// three coordinates (grids, snakes). Default: the three coordinates from
+  /// control_point_offset(i); throws Error naming i if the model has no such point.
+  virtual void fix_point(int i);
+  /// Fixes every point on the border of an open surface. Default: throws Error (no border).
+  virtual void fix_border();
+  /// Local sculpting: fixes every point outside the support of `region` grown by `margin` rings
+  /// and returns how many were frozen. Default: throws Error (not supported).
+  virtual int freeze_outside(const SculptedRegion& region, int margin);
 
  protected:
   Model() = default;

@@ -1,15 +1,10 @@
 #include "dynamics/core/model_tessellation.h"
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 #include <vector>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/grid/pde_surface.h"
-#include "dynamics/grid/snake.h"
-#include "dynamics/grid/terzopoulos_surface.h"
 #include "core/error.h"
 #include "surface/adaptive_tessellation.h"
 #include "surface/parametric_surface_tessellation.h"
@@ -24,13 +19,6 @@ void check_coordinates(const Model& model, ConstVectorRef q) {
     throw make_error("model tessellation: q has ", q.size(), " entries, the model ",
                      model.coordinate_count());
   }
-}
-
-ParameterDomain grid_domain(const Grid& grid) {
-  ParameterDomain domain;
-  domain.u_max = (grid.nu() - 1) * grid.spacing();
-  domain.v_max = (grid.nv() - 1) * grid.spacing();
-  return domain;
 }
 
 // A degree-1 NURBS curve through the points, knots at the uniform parameters k / segments
@@ -53,52 +41,51 @@ NurbsCurve polyline(const Eigen::MatrixX3d& points, bool closed) {
   return NurbsCurve(KnotVector(1, knots), points);
 }
 
-double tube_radius(const ModelTessellationSettings& settings, const Eigen::MatrixX3d& samples) {
-  if (settings.tube_radius > 0.0) {
-    return settings.tube_radius;
+// Positions at `segments` + 1 uniform parameters over the domain (`segments` when closed).
+Eigen::MatrixX3d sampled_positions(const Model& model, ConstVectorRef q,
+                                   const ParameterDomain& domain, int segments) {
+  const bool closed = domain.periodic_u;
+  Eigen::MatrixX3d points(closed ? segments : segments + 1, 3);
+  for (int k = 0; k < points.rows(); ++k) {
+    const double u = domain.u_at(static_cast<double>(k) / segments);
+    points.row(k) = model.position(q, Eigen::Vector2d(u, 0.0)).transpose();
   }
-  const double extent = (samples.colwise().maxCoeff() - samples.colwise().minCoeff()).norm();
+  return points;
+}
+
+double extent_radius(const Eigen::MatrixX3d& points) {
+  const double extent = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
   return extent > 0.0 ? 0.01 * extent : 1e-3;
 }
 
 }  // namespace
 
-ParameterDomain model_parameter_domain(const Model& model, ConstVectorRef q) {
+TriangleMesh tessellate_model(const Model& model, ConstVectorRef q,
+                              const ModelTessellationSettings& settings, std::string name) {
   check_coordinates(model, q);
-  if (const auto* nurbs = dynamic_cast<const DNurbsSurface*>(&model)) {
-    return nurbs_parameter_domain(nurbs->surface(q));
-  }
-  if (dynamic_cast<const DeformableSuperquadricModel*>(&model) != nullptr) {
-    return superquadric_parameter_domain();
-  }
-  if (const auto* grid = dynamic_cast<const TerzopoulosSurface*>(&model)) {
-    return grid_domain(grid->grid());
-  }
-  if (const auto* grid = dynamic_cast<const PdeSurface*>(&model)) {
-    return grid_domain(grid->grid());
-  }
-  throw make_error(
-      "model tessellation: no known (u, v) domain for this model (parametric "
-      "dimension ",
-      model.parametric_dimension(), "); pass one explicitly");
+  return model.tessellate(q, settings, std::move(name));
 }
 
-NormalOrientation model_normal_orientation(const Model& model) {
-  return dynamic_cast<const DeformableSuperquadricModel*>(&model) != nullptr
-             ? NormalOrientation::kSvCrossSu
-             : NormalOrientation::kSuCrossSv;
-}
-
-ParametricSurface model_surface(const Model& model, ConstVectorRef q) {
+double curve_tube_radius(const Model& model, ConstVectorRef q) {
   check_coordinates(model, q);
-  if (const auto* nurbs = dynamic_cast<const DNurbsSurface*>(&model)) {
-    return parametric_surface(nurbs->surface(q));
+  constexpr int kSegments = 64;
+  if (const std::optional<Shape> shape = model.exact_shape(q);
+      shape && std::holds_alternative<NurbsCurve>(*shape)) {
+    return extent_radius(sample_curve(std::get<NurbsCurve>(*shape), kSegments));
   }
-  return model_surface(model, q, model_parameter_domain(model, q), model_normal_orientation(model));
+  return extent_radius(sampled_positions(model, q, model.parameter_domain(q), kSegments));
 }
 
-ParametricSurface model_surface(const Model& model, ConstVectorRef q, const ParameterDomain& domain,
-                                NormalOrientation orientation) {
+int minimum_segments(const ParameterDomain& domain, bool along_v) {
+  const bool periodic = along_v ? domain.periodic_v : domain.periodic_u;
+  const bool poles = along_v ? domain.pole_v_min && domain.pole_v_max
+                             : domain.pole_u_min && domain.pole_u_max;
+  return periodic ? 3 : poles ? 2 : 1;
+}
+
+ParametricSurface sampled_model_surface(const Model& model, ConstVectorRef q,
+                                        const ParameterDomain& domain,
+                                        NormalOrientation orientation) {
   check_coordinates(model, q);
   if (model.parametric_dimension() != 2) {
     throw make_error("model tessellation: parametric dimension ", model.parametric_dimension(),
@@ -114,11 +101,18 @@ ParametricSurface model_surface(const Model& model, ConstVectorRef q, const Para
       {}, orientation);
 }
 
-TriangleMesh tessellate_model(const Model& model, ConstVectorRef q,
-                              const ModelTessellationSettings& settings, std::string name) {
-  check_coordinates(model, q);
-  if (model.parametric_dimension() == 2) {
-    const ParametricSurface surface = model_surface(model, q);
+TriangleMesh polyline_tube(const Eigen::MatrixX3d& points, bool closed, double radius, int sides,
+                           std::string name) {
+  const int segments = closed ? static_cast<int>(points.rows()) : static_cast<int>(points.rows()) - 1;
+  return tessellate_curve_tube(polyline(points, closed), segments, radius, sides, std::move(name));
+}
+
+// The default of the contract (dynamics/core/model.h): surfaces through parametric_surface,
+// curves as a tube around the exact curve or the sampled polyline.
+TriangleMesh Model::tessellate(ConstVectorRef q, const ModelTessellationSettings& settings,
+                               std::string name) const {
+  if (parametric_dimension() == 2) {
+    const ParametricSurface surface = parametric_surface(q);
     if (settings.max_error > 0.0) {
       RestrictedMesh mesh(surface, settings.segments_u, settings.segments_v);
       mesh.refine(surface_error_criterion(surface, settings.max_error), settings.max_level);
@@ -126,31 +120,25 @@ TriangleMesh tessellate_model(const Model& model, ConstVectorRef q,
     }
     return tessellate_surface(surface, settings.segments_u, settings.segments_v, std::move(name));
   }
-  if (const auto* curve = dynamic_cast<const DNurbsCurve*>(&model)) {
-    const NurbsCurve shape = curve->curve(q);
-    const double radius = tube_radius(settings, sample_curve(shape, settings.segments_u));
-    return tessellate_curve_tube(shape, settings.segments_u, radius, settings.tube_sides,
-                                 std::move(name));
-  }
-  if (const auto* snake = dynamic_cast<const Snake*>(&model)) {
-    const bool closed = snake->chain().closed();
-    const int segments = settings.segments_u;
-    if (segments < (closed ? 3 : 1)) {
-      throw make_error("model tessellation: curve resolution ", segments, " is below ",
-                       closed ? 3 : 1);
-    }
-    Eigen::MatrixX3d points(closed ? segments : segments + 1, 3);
-    for (int k = 0; k < points.rows(); ++k) {
-      const double s = static_cast<double>(k) / segments;
-      points.row(k) = model.position(q, Eigen::Vector2d(s, 0.0)).transpose();
-    }
-    return tessellate_curve_tube(polyline(points, closed), segments, tube_radius(settings, points),
+  const double radius =
+      settings.tube_radius > 0.0 ? settings.tube_radius : curve_tube_radius(*this, q);
+  if (const std::optional<Shape> shape = exact_shape(q);
+      shape && std::holds_alternative<NurbsCurve>(*shape)) {
+    return tessellate_curve_tube(std::get<NurbsCurve>(*shape), settings.segments_u, radius,
                                  settings.tube_sides, std::move(name));
   }
-  throw make_error(
-      "model tessellation: no tessellation for this curve model (parametric "
-      "dimension ",
-      model.parametric_dimension(), ")");
+  const ParameterDomain domain = parameter_domain(q);
+  const int segments = settings.segments_u;
+  if (segments < (domain.periodic_u ? 3 : 1)) {
+    throw make_error("model tessellation: curve resolution ", segments, " is below ",
+                     domain.periodic_u ? 3 : 1);
+  }
+  return polyline_tube(sampled_positions(*this, q, domain, segments), domain.periodic_u, radius,
+                       settings.tube_sides, std::move(name));
+}
+
+ParametricSurface Model::parametric_surface(ConstVectorRef q) const {
+  return sampled_model_surface(*this, q, parameter_domain(q), normal_orientation());
 }
 
 }  // namespace dnurbs

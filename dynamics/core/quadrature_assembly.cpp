@@ -256,27 +256,6 @@ AssemblyPattern make_assembly_pattern(int node_count, int local_count,
   return pattern;
 }
 
-SparseMatrix kronecker_identity(const SparseMatrix& scalar, int block_size) {
-  const auto n = scalar.rows();
-  SparseMatrix result(n * block_size, n * block_size);
-  Eigen::VectorXi sizes(n * block_size);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    for (int c = 0; c < block_size; ++c) {
-      sizes[j * block_size + c] = static_cast<int>(scalar.col(j).nonZeros());
-    }
-  }
-  result.reserve(sizes);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    for (int c = 0; c < block_size; ++c) {
-      for (SparseMatrix::InnerIterator it(scalar, j); it; ++it) {
-        result.insert(it.row() * block_size + c, j * block_size + c) = it.value();
-      }
-    }
-  }
-  result.makeCompressed();
-  return result;
-}
-
 SparseMatrix dense_block_pattern(const SparseMatrix& scalar, int block_size) {
   const auto n = scalar.rows();
   SparseMatrix result(n * block_size, n * block_size);

@@ -134,8 +134,6 @@ struct AssemblyPattern {
 AssemblyPattern make_assembly_pattern(int node_count, int local_count,
                                       const std::vector<int>& element_nodes);
 
-/// S (x) I_b: entry (b i + r, b j + r) = S(i, j); only the diagonal of each block is stored.
-SparseMatrix kronecker_identity(const SparseMatrix& scalar, int block_size);
 /// The pattern of a matrix whose every scalar non-zero is a dense b by b block (values zero).
 SparseMatrix dense_block_pattern(const SparseMatrix& scalar, int block_size);
 /// Value index, in a dense_block_pattern matrix, of entry (b i + r, b j + c) where the scalar

@@ -1,5 +1,7 @@
 #include "dynamics/dnurbs/dnurbs_curve.h"
 
+#include "dynamics/dnurbs/local_sculpting.h"
+
 namespace dnurbs {
 
 namespace {
@@ -23,6 +25,20 @@ DNurbsCurve::DNurbsCurve(const NurbsCurve& curve, const DNurbsCurveMaterial& mat
 
 NurbsCurve DNurbsCurve::curve(ConstVectorRef q) const {
   return NurbsCurve(curve_.knots(), control_points(q), weights(q));
+}
+
+ParameterDomain DNurbsCurve::parameter_domain(ConstVectorRef /*q*/) const {
+  ParameterDomain domain;
+  domain.u_min = curve_.knots().domain_start();
+  domain.u_max = curve_.knots().domain_end();
+  domain.periodic_u = curve_.knots().is_periodic();
+  return domain;
+}
+
+std::optional<Shape> DNurbsCurve::exact_shape(ConstVectorRef q) const { return Shape(curve(q)); }
+
+int DNurbsCurve::freeze_outside(const SculptedRegion& region, int margin) {
+  return freeze_outside_sculpted_region(*this, region, margin);
 }
 
 }  // namespace dnurbs

@@ -37,6 +37,14 @@ class DNurbsCurve : public DNurbsModel {
   /// The curve the model was built from.
   const NurbsCurve& initial_curve() const { return curve_; }
 
+  /// The knot domain [t_p, t_{m-p}], periodic_u for a periodic knot vector.
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// The NURBS curve at q.
+  std::optional<Shape> exact_shape(ConstVectorRef q) const override;
+  /// Freezes the control points outside sculpted_control_points(initial_curve(), region,
+  /// margin) (dynamics/dnurbs/local_sculpting.h).
+  int freeze_outside(const SculptedRegion& region, int margin) override;
+
  private:
   NurbsCurve curve_;
 };

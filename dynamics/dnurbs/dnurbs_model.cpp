@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {
@@ -635,6 +636,23 @@ void DNurbsModel::fix_control_point(int i) {
   const int offset = control_point_offset(i);
   for (int c = 0; c < 3; ++c) {
     fix_coordinate(offset + c);
+  }
+}
+
+void DNurbsModel::fix_point(int i) {
+  if (i < 0 || i >= control_point_count_) {
+    throw make_error("control point ", i, " does not exist (the model has ", control_point_count_,
+                     ")");
+  }
+  fix_control_point(i);
+}
+
+void DNurbsModel::coordinate_lower_bounds(VectorRef lower) const {
+  if (mode_ != WeightMode::kFree) {
+    return;
+  }
+  for (int c = 0; c < control_point_count_; ++c) {
+    lower[weight_offset(c)] = minimum_weight_;
   }
 }
 

@@ -84,6 +84,10 @@ class DNurbsModel : public Model {
                              VectorRef force) const override;
   void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
   int control_point_offset(int i) const override;
+  /// Free weights: every weight coordinate is bounded below by the minimum weight.
+  void coordinate_lower_bounds(VectorRef lower) const override;
+  /// fix_control_point(i), with an Error naming i if there is no such control point.
+  void fix_point(int i) override;
 
   WeightMode weight_mode() const { return mode_; }
   /// Number of distinct control points.

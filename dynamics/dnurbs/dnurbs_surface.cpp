@@ -1,5 +1,8 @@
 #include "dynamics/dnurbs/dnurbs_surface.h"
 
+#include "dynamics/dnurbs/local_sculpting.h"
+#include "nurbs/jacobian.h"
+
 namespace dnurbs {
 
 namespace {
@@ -45,6 +48,78 @@ void DNurbsSurface::fix_border() {
         fix_control_point(surface_.control_point_index(i, j));
       }
     }
+  }
+}
+
+ParameterDomain DNurbsSurface::parameter_domain(ConstVectorRef q) const {
+  return nurbs_parameter_domain(surface(q));
+}
+
+ParametricSurface DNurbsSurface::parametric_surface(ConstVectorRef q) const {
+  return dnurbs::parametric_surface(surface(q));
+}
+
+std::optional<Shape> DNurbsSurface::exact_shape(ConstVectorRef q) const {
+  return Shape(surface(q));
+}
+
+int DNurbsSurface::freeze_outside(const SculptedRegion& region, int margin) {
+  return freeze_outside_sculpted_region(*this, region, margin);
+}
+
+void DNurbsSurface::tangent_kinematics(ConstVectorRef q, ConstVectorRef qd,
+                                       const Eigen::Vector2d& u,
+                                       TangentKinematics& tangents) const {
+  const NurbsSurface shape = surface(q);
+  const WeightMode mode = weight_mode();
+  const bool free = mode == WeightMode::kFree;
+  SurfaceJacobian jacobian;
+  surface_jacobian(shape, u.x(), u.y(), 1, mode, jacobian);
+  const auto iu = static_cast<int>(SurfaceQuantity::kU);
+  const auto iv = static_cast<int>(SurfaceQuantity::kV);
+  tangents.su = jacobian.point_derivatives[static_cast<size_t>(iu)];
+  tangents.sv = jacobian.point_derivatives[static_cast<size_t>(iv)];
+
+  // Rates S_u' = J_u qd and S_v' = J_v qd from the control point (and weight) rates, and the
+  // columns of J_u, J_v: N_u e_r for position coordinate r of an active control point, the
+  // weight column for its weight.
+  const Eigen::MatrixX3d point_rates = control_points(qd);
+  const Eigen::VectorXd weight_rates =
+      free ? weights(qd) : Eigen::VectorXd::Zero(control_point_count());
+  const int per_point = free ? 4 : 3;
+  const int count = jacobian.active_count * per_point;
+  tangents.columns.resize(static_cast<size_t>(count));
+  tangents.ju.setZero(3, count);
+  tangents.jv.setZero(3, count);
+  tangents.su_rate.setZero();
+  tangents.sv_rate.setZero();
+  for (int a = 0; a < jacobian.active_count; ++a) {
+    const int point = jacobian.control_point[static_cast<size_t>(a)];
+    const int offset = control_point_offset(point);
+    tangents.su_rate += jacobian.basis(iu, a) * point_rates.row(point).transpose();
+    tangents.sv_rate += jacobian.basis(iv, a) * point_rates.row(point).transpose();
+    for (int r = 0; r < 3; ++r) {
+      tangents.columns[static_cast<size_t>(a * per_point + r)] = offset + r;
+      tangents.ju(r, a * per_point + r) = jacobian.basis(iu, a);
+      tangents.jv(r, a * per_point + r) = jacobian.basis(iv, a);
+    }
+    if (free) {
+      const auto& weight_u = jacobian.weight_column[static_cast<size_t>(iu)];
+      const auto& weight_v = jacobian.weight_column[static_cast<size_t>(iv)];
+      tangents.su_rate += weight_u.col(a) * weight_rates[point];
+      tangents.sv_rate += weight_v.col(a) * weight_rates[point];
+      tangents.columns[static_cast<size_t>(a * per_point + 3)] = weight_offset(point);
+      tangents.ju.col(a * per_point + 3) = weight_u.col(a);
+      tangents.jv.col(a * per_point + 3) = weight_v.col(a);
+    }
+  }
+  tangents.su_bias.setZero();
+  tangents.sv_bias.setZero();
+  if (free) {
+    std::array<Eigen::Vector3d, 6> rates;
+    surface_jacobian_rate(shape, u.x(), u.y(), 1, point_rates, weight_rates, rates);
+    tangents.su_bias = rates[static_cast<size_t>(iu)];
+    tangents.sv_bias = rates[static_cast<size_t>(iv)];
   }
 }
 

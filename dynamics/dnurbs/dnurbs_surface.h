@@ -37,7 +37,21 @@ class DNurbsSurface : public DNurbsModel {
   NurbsSurface surface(ConstVectorRef q) const;
   const NurbsSurface& initial_surface() const { return surface_; }
   /// Fixes every control point on the border of the control net (i = 0, i = m, j = 0, j = n).
-  void fix_border();
+  void fix_border() override;
+
+  /// nurbs_parameter_domain of the surface at q (seams and poles detected).
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// The NURBS surface at q with its exact normals (pole limits included).
+  ParametricSurface parametric_surface(ConstVectorRef q) const override;
+  /// The NURBS surface at q.
+  std::optional<Shape> exact_shape(ConstVectorRef q) const override;
+  /// Freezes the control points outside sculpted_control_points(initial_surface(), region,
+  /// margin) (dynamics/dnurbs/local_sculpting.h).
+  int freeze_outside(const SculptedRegion& region, int margin) override;
+  /// S_u, S_v of the NURBS surface at u, their Jacobians with respect to the control points
+  /// (and free weights) and Jdot qd (free weights; zero for fixed ones), by nurbs/jacobian.h.
+  void tangent_kinematics(ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u,
+                          TangentKinematics& tangents) const override;
 
  private:
   NurbsSurface surface_;

@@ -11,20 +11,13 @@
 
 #include <Eigen/Core>
 
+#include "dynamics/core/sculpted_region.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"
 
 namespace dnurbs {
-
-/// Where a D-NURBS shape is sculpted: the parameters of the material points that forces,
-/// springs and constraints act on ((u, v); v is ignored for curves), and control points that
-/// forces or constraints act on directly (distinct control point indices).
-struct SculptedRegion {
-  std::vector<Eigen::Vector2d> parameters;
-  std::vector<int> control_points;
-};
 
 /// The control points that influence the region: the (p + 1)(q + 1) whose basis functions are
 /// non-zero on the knot span of each parameter (N_{k-p..k}, Piegl & Tiller A2.1-A2.2), and the

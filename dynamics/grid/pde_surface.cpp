@@ -37,13 +37,13 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
   check_coefficient(material.b, "b", false);
   check_coefficient(material.c, "c", false);
   check_coefficient(material.d, "d", false);
-  check_coefficient(material.density, "density rho", true);
-  check_coefficient(material.damping, "damping gamma", false);
+  check_coefficient(material.mass_density, "density rho", true);
+  check_coefficient(material.damping_density, "damping gamma", false);
   for (const auto& [name, value] :
-       std::array<std::pair<const char*, double>, 4>{{{"su0", material.su0},
-                                                      {"su1", material.su1},
-                                                      {"sv0", material.sv0},
-                                                      {"sv1", material.sv1}}}) {
+       std::array<std::pair<const char*, double>, 4>{{{"tangent_u0 (su0)", material.tangent_u0},
+                                                      {"tangent_u1 (su1)", material.tangent_u1},
+                                                      {"tangent_v0 (sv0)", material.tangent_v0},
+                                                      {"tangent_v1 (sv1)", material.tangent_v1}}}) {
     if (!std::isfinite(value)) {
       throw make_error("PDE surface boundary tangent ", name, " = ", value, " is not finite");
     }
@@ -134,8 +134,8 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
         } else {
           // Boundary node at rest; ghost beyond it r(2) = r(0) - 2 h s n0 (displacements).
           diagonal += 1.0;
-          const double s = axis == 0 ? (side < 0 ? material.su0 : material.su1)
-                                     : (side < 0 ? material.sv0 : material.sv1);
+          const double s = axis == 0 ? (side < 0 ? material.tangent_u0 : material.tangent_u1)
+                                     : (side < 0 ? material.tangent_v0 : material.tangent_v1);
           const int boundary = grid.index(i + side * di, j + side * dj);
           tangent_force_.segment<3>(3 * a) +=
               coefficient * 2.0 * h * s * normal.row(boundary).transpose();
@@ -171,8 +171,8 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
   matrices_.stiffness.makeCompressed();
   SparseMatrix identity(size, size);
   identity.setIdentity();
-  matrices_.mass = (material.density * area) * identity;
-  matrices_.damping = material.damping > 0.0 ? SparseMatrix((material.damping * area) * identity)
+  matrices_.mass = (material.mass_density * area) * identity;
+  matrices_.damping = material.damping_density > 0.0 ? SparseMatrix((material.damping_density * area) * identity)
                                              : SparseMatrix(size, size);
   rest_coordinates_.resize(size);
   for (int a = 0; a < active_count; ++a) {
@@ -255,7 +255,7 @@ void PdeSurface::add_distributed_force(ConstVectorRef q, const ForceDensity& den
                                        VectorRef force) const {
   const double area = grid_.spacing() * grid_.spacing();
   MaterialSample sample;
-  sample.mass_density = material_.density;
+  sample.mass_density = material_.mass_density;
   const NodePositions r = positions(q);
   for (size_t a = 0; a < active_.size(); ++a) {
     const int k = active_[a];
@@ -292,6 +292,15 @@ int advance_frame(Integrator& integrator, System& system, double max_dt, double 
     integrator.step(system, dt);
   }
   return steps;
+}
+
+ParameterDomain PdeSurface::parameter_domain(ConstVectorRef /*q*/) const {
+  return grid_parameter_domain(grid_);
+}
+
+TriangleMesh PdeSurface::tessellate(ConstVectorRef q, const ModelTessellationSettings& /*settings*/,
+                                    std::string name) const {
+  return grid_triangle_mesh(grid_, positions(q), std::move(name));
 }
 
 }  // namespace dnurbs

@@ -17,8 +17,8 @@
 // Boundary conditions at the region border: the boundary node stays at rest and the ghost node
 // beyond it is r(-1) = r(1) - 2 h s n0 (central difference), so that the inward derivative of the
 // displacement at the boundary is s n0, n0 the rest normal of the boundary node and s the
-// boundary tangent su0 (boundary at smaller u), su1 (larger u), sv0, sv1. Non-zero tangents
-// deform the surface without force (seed 002 figure 9); the internal force is affine,
+// boundary tangent tangent_u0 (boundary at smaller u), tangent_u1 (larger u), tangent_v0,
+// tangent_v1. Non-zero tangents deform the surface without force (seed 002 figure 9); the internal force is affine,
 // f_int = -K (q - r0) + t. M, D and K are constant, so the integrators factor once; the model
 // does not claim the S (x) I_3 layout (kronecker_block_size() = 0) because the integrators'
 // Kronecker path assumes f_int = -K q.
@@ -40,12 +40,15 @@ struct PdeSurfaceMaterial {
   double b = 1.0;        ///< d4/du4 coefficient (>= 0)
   double c = 2.0;        ///< d4/du2dv2 coefficient (>= 0; b = d = 1, c = 2 is the biharmonic)
   double d = 1.0;        ///< d4/dv4 coefficient (>= 0)
-  double density = 1.0;  ///< rho (> 0)
-  double damping = 0.0;  ///< gamma (>= 0)
-  double su0 = 0.0;      ///< boundary tangents (finite): inward slope along the rest normal
-  double su1 = 0.0;
-  double sv0 = 0.0;
-  double sv1 = 0.0;
+  double mass_density = 1.0;     ///< rho (> 0), mass rho h^2 per node
+  double damping_density = 0.0;  ///< gamma (>= 0), damping gamma h^2 per node
+  /// Boundary tangents (finite): the inward slope along the rest normal at the boundary at
+  /// smaller u (tangent_u0), larger u (tangent_u1), smaller v and larger v (scene keys su0, su1,
+  /// sv0, sv1 after the thesis).
+  double tangent_u0 = 0.0;
+  double tangent_u1 = 0.0;
+  double tangent_v0 = 0.0;
+  double tangent_v1 = 0.0;
 };
 
 /// A deformation region: the nodes within `deformation_radius` of `centre` at rest.
@@ -97,6 +100,11 @@ class PdeSurface : public Model {
                              VectorRef force) const override;
   /// Active slot i's coordinates start at 3 i.
   int control_point_offset(int i) const override;
+  /// The whole grid's [0, (nu - 1) h] x [0, (nv - 1) h].
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// Every grid node at q (fixed ones at rest) as the node mesh; the segments are ignored.
+  TriangleMesh tessellate(ConstVectorRef q, const ModelTessellationSettings& settings,
+                          std::string name) const override;
 
  private:
   Grid grid_;

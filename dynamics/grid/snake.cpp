@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -26,20 +27,6 @@ Eigen::VectorXd weights(const Eigen::VectorXd& given, double constant, int count
     }
   }
   return w;
-}
-
-SparseMatrix kron_identity3(const SparseMatrix& a) {
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
-    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
-      for (int c = 0; c < 3; ++c) {
-        triplets.emplace_back(3 * it.row() + c, 3 * it.col() + c, it.value());
-      }
-    }
-  }
-  SparseMatrix result(3 * a.rows(), 3 * a.cols());
-  result.setFromTriplets(triplets.begin(), triplets.end());
-  return result;
 }
 
 }  // namespace
@@ -104,9 +91,9 @@ Snake::Snake(const NodeChain& chain, const NodePositions& initial, const SnakeMa
   scalar_.damping = material.damping_density > 0.0
                         ? SparseMatrix(material.damping_density * identity)
                         : SparseMatrix(n, n);
-  matrices_.mass = kron_identity3(scalar_.mass);
-  matrices_.damping = kron_identity3(scalar_.damping);
-  matrices_.stiffness = kron_identity3(scalar_.stiffness);
+  matrices_.mass = kronecker_identity(scalar_.mass, 3);
+  matrices_.damping = kronecker_identity(scalar_.damping, 3);
+  matrices_.stiffness = kronecker_identity(scalar_.stiffness, 3);
 }
 
 NodePositions Snake::positions(ConstVectorRef q) const {
@@ -169,6 +156,12 @@ int Snake::control_point_offset(int i) const {
     throw make_error("snake node ", i, " is outside 0..", chain_.count() - 1);
   }
   return 3 * i;
+}
+
+ParameterDomain Snake::parameter_domain(ConstVectorRef /*q*/) const {
+  ParameterDomain domain;
+  domain.periodic_u = chain_.closed();
+  return domain;
 }
 
 Force potential_force(Potential potential, double gradient_step) {

@@ -68,6 +68,8 @@ class Snake : public Model {
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
   int control_point_offset(int i) const override;
+  /// s in [0, 1], periodic for a closed chain.
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
 
  private:
   NodeChain chain_;

@@ -2,11 +2,14 @@
 
 #include <array>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include <Eigen/Geometry>
 #include <vector>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -37,22 +40,6 @@ Eigen::RowVector3d packed(const Eigen::Matrix2d& weights) {
 // Row-wise dot products of two #nodes by 3 fields.
 Eigen::VectorXd dots(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
   return (a.array() * b.array()).rowwise().sum();
-}
-
-// A (x) I_3 for a #nodes by #nodes matrix A.
-SparseMatrix kron_identity3(const SparseMatrix& a) {
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(3 * a.nonZeros()));
-  for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
-    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
-      for (int c = 0; c < 3; ++c) {
-        triplets.emplace_back(3 * it.row() + c, 3 * it.col() + c, it.value());
-      }
-    }
-  }
-  SparseMatrix result(3 * a.rows(), 3 * a.cols());
-  result.setFromTriplets(triplets.begin(), triplets.end());
-  return result;
 }
 
 SparseMatrix scaled_identity(int n, double value) {
@@ -165,16 +152,9 @@ void TerzopoulosSurface::set_initial_positions(const NodePositions& positions) {
   initial_ = positions;
 }
 
-void TerzopoulosSurface::clamp_node(int node) {
-  check_node(node);
-  for (int c = 0; c < 3; ++c) {
-    fix_coordinate(3 * node + c);
-  }
-}
-
-void TerzopoulosSurface::clamp_border() {
+void TerzopoulosSurface::fix_border() {
   for (const int node : grid_.border_nodes()) {
-    clamp_node(node);
+    fix_point(node);
   }
 }
 
@@ -389,9 +369,9 @@ void TerzopoulosSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matr
                          : SparseMatrix(size, size);
   const SparseMatrix k = linearized_stiffness(q);
   if (settings_.normal == NormalApproximation::kClassic) {
-    matrices.stiffness = kron_identity3(k);
+    matrices.stiffness = kronecker_identity(k, 3);
   } else {
-    matrices.stiffness = kron_identity3(0.5 * (k + SparseMatrix(k.transpose())));
+    matrices.stiffness = kronecker_identity(0.5 * (k + SparseMatrix(k.transpose())), 3);
   }
 }
 
@@ -437,6 +417,33 @@ void TerzopoulosSurface::add_distributed_force(ConstVectorRef q, const ForceDens
 int TerzopoulosSurface::control_point_offset(int i) const {
   check_node(i);
   return 3 * i;
+}
+
+ParameterDomain TerzopoulosSurface::parameter_domain(ConstVectorRef /*q*/) const {
+  return grid_parameter_domain(grid_);
+}
+
+TriangleMesh TerzopoulosSurface::tessellate(ConstVectorRef q,
+                                            const ModelTessellationSettings& /*settings*/,
+                                            std::string name) const {
+  return grid_triangle_mesh(grid_, positions(q), std::move(name));
+}
+
+void TerzopoulosSurface::semi_implicit_matrices(ConstVectorRef q, bool scalar,
+                                                ModelMatrices& matrices) const {
+  const SparseMatrix k = linearized_stiffness(q);
+  const double area = grid_.spacing() * grid_.spacing();
+  const int nodes = grid_.node_count();
+  SparseMatrix identity(nodes, nodes);
+  identity.setIdentity();
+  matrices.mass = material_.mass_density * area * identity;
+  matrices.damping = material_.damping_density * area * identity;
+  matrices.stiffness = k;
+  if (!scalar) {
+    matrices.mass = kronecker_identity(matrices.mass, 3);
+    matrices.damping = kronecker_identity(matrices.damping, 3);
+    matrices.stiffness = kronecker_identity(k, 3);
+  }
 }
 
 }  // namespace dnurbs

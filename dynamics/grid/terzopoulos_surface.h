@@ -91,10 +91,8 @@ class TerzopoulosSurface : public Model {
   void set_node_elasticity(int node, const Eigen::Matrix2d& eta, const Eigen::Matrix2d& xi);
   /// The initial shape (default: the rest shape), #nodes by 3, finite.
   void set_initial_positions(const NodePositions& positions);
-  /// Fixes the three coordinates of a node (a clamped node never moves).
-  void clamp_node(int node);
-  /// Clamps every border node.
-  void clamp_border();
+  /// Fixes every border node (a fixed node never moves; single nodes: Model::fix_point).
+  void fix_border() override;
 
   const Grid& grid() const { return grid_; }
   const TerzopoulosSettings& settings() const { return settings_; }
@@ -136,6 +134,17 @@ class TerzopoulosSurface : public Model {
                              VectorRef force) const override;
   /// Node i's coordinates start at 3 i (forces.h control_point_force acts on nodes).
   int control_point_offset(int i) const override;
+  /// The grid's [0, (nu - 1) h] x [0, (nv - 1) h].
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// The node grid at q (its shape is that mesh); the segments are ignored.
+  TriangleMesh tessellate(ConstVectorRef q, const ModelTessellationSettings& settings,
+                          std::string name) const override;
+  /// Node blocks of 3: the semi-implicit step solves one node matrix for x, y and z.
+  int semi_implicit_block_size() const override { return 3; }
+  /// Seed 000's matrices from the current tensors: M = mu h^2 I, D = gamma h^2 I and
+  /// K = linearized_stiffness(q) (nodes by nodes when `scalar`, else (x) I_3).
+  void semi_implicit_matrices(ConstVectorRef q, bool scalar,
+                              ModelMatrices& matrices) const override;
 
  private:
   struct Geometry;

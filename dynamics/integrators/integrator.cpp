@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/SparseCholesky>
 
 #include "core/error.h"
+#include "core/fixed_coordinates.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -14,40 +17,6 @@ namespace {
 using RowMatrixX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using NodeMap = Eigen::Map<RowMatrixX3>;
 using ConstNodeMap = Eigen::Map<const RowMatrixX3>;
-
-// Rows and columns of A whose index maps to a free index (>= 0), in order.
-SparseMatrix reduce(const SparseMatrix& matrix, const std::vector<int>& free_index,
-                    int free_count) {
-  if (free_count == matrix.rows()) {
-    return matrix;
-  }
-  SparseMatrix result(free_count, free_count);
-  Eigen::VectorXi sizes = Eigen::VectorXi::Zero(free_count);
-  for (Eigen::Index j = 0; j < matrix.outerSize(); ++j) {
-    const int fj = free_index[static_cast<size_t>(j)];
-    if (fj < 0) {
-      continue;
-    }
-    for (SparseMatrix::InnerIterator it(matrix, j); it; ++it) {
-      sizes[fj] += free_index[static_cast<size_t>(it.row())] >= 0 ? 1 : 0;
-    }
-  }
-  result.reserve(sizes);
-  for (Eigen::Index j = 0; j < matrix.outerSize(); ++j) {
-    const int fj = free_index[static_cast<size_t>(j)];
-    if (fj < 0) {
-      continue;
-    }
-    for (SparseMatrix::InnerIterator it(matrix, j); it; ++it) {
-      const int fi = free_index[static_cast<size_t>(it.row())];
-      if (fi >= 0) {
-        result.insert(fi, fj) = it.value();
-      }
-    }
-  }
-  result.makeCompressed();
-  return result;
-}
 
 // M + c_D D + c_K K (an empty D and zero coefficients are skipped, so that c_D = c_K = 0
 // factors M with its own pattern).
@@ -99,10 +68,8 @@ struct MatrixBlock {
   double position_coefficient = 0.0;
   double velocity_coefficient = 0.0;
   int factorizations = 0;
-  // free_index[k] >= 0 for free unknowns (nodes in the Kronecker layout, velocities otherwise),
-  // free_list the inverse map; both local to the block.
-  std::vector<int> free_index;
-  std::vector<int> free_list;
+  // The free unknowns of the block (nodes in the Kronecker layout, velocities otherwise).
+  FreeCoordinates free;
   Eigen::SimplicialLDLT<SparseMatrix> solver;
   SparseMatrix analyzed_pattern;  // reduced block whose pattern the solver has analyzed
   ModelMatrices matrices;         // state-dependent blocks: M, D, K at the current iterate
@@ -116,27 +83,11 @@ struct MatrixBlock {
     velocity_count = m.velocity_count();
     constant = m.matrices_are_constant() && m.constant_matrices() != nullptr;
     const std::vector<int>& fixed = m.fixed_coordinates();
+    const std::optional<std::vector<int>> nodes = fixed_nodes(fixed, 3);
     kronecker = constant && m.kronecker_block_size() == 3 && m.scalar_matrices() != nullptr &&
-                velocity_count % 3 == 0 && coordinate_count == velocity_count && [&] {
-                  for (size_t i = 0; i < fixed.size(); i += 3) {
-                    if (i + 2 >= fixed.size() || fixed[i] % 3 != 0 ||
-                        fixed[i + 1] != fixed[i] + 1 || fixed[i + 2] != fixed[i] + 2) {
-                      return false;
-                    }
-                  }
-                  return true;
-                }();
-    const int unit = kronecker ? 3 : 1;
-    free_index.assign(static_cast<size_t>(velocity_count / unit), 0);
-    for (const int local : fixed) {
-      free_index[static_cast<size_t>(local / unit)] = -1;
-    }
-    for (size_t k = 0; k < free_index.size(); ++k) {
-      if (free_index[k] >= 0) {
-        free_index[k] = static_cast<int>(free_list.size());
-        free_list.push_back(static_cast<int>(k));
-      }
-    }
+                velocity_count % 3 == 0 && coordinate_count == velocity_count && nodes;
+    free = kronecker ? FreeCoordinates(velocity_count / 3, *nodes)
+                     : FreeCoordinates(velocity_count, fixed);
   }
 
   // The model's full (velocity-space) matrices: the constant ones, or those last assembled.
@@ -152,7 +103,7 @@ struct MatrixBlock {
         kronecker ? *system.model(model).scalar_matrices() : full_matrices(system);
     factored = false;
     ++factorizations;
-    if (!free_list.empty()) {
+    if (free.free_count() > 0) {
       factor_free(source, damping_coefficient, stiffness_coefficient);
     }
     position_coefficient = stiffness_coefficient;
@@ -164,8 +115,7 @@ struct MatrixBlock {
   void factor_free(const ModelMatrices& source, double damping_coefficient,
                    double stiffness_coefficient) {
     const SparseMatrix reduced =
-        reduce(effective_matrix(source, damping_coefficient, stiffness_coefficient), free_index,
-               static_cast<int>(free_list.size()));
+        free.reduce(effective_matrix(source, damping_coefficient, stiffness_coefficient));
     if (!same_pattern(reduced, analyzed_pattern)) {
       solver.analyzePattern(reduced);
       analyzed_pattern = reduced;
@@ -182,7 +132,7 @@ struct MatrixBlock {
   // x = A_ff^{-1} r on the block's free unknowns, zero on its fixed ones (block segments of the
   // stacked vectors).
   void solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-    const auto free_count = static_cast<Eigen::Index>(free_list.size());
+    const auto free_count = static_cast<Eigen::Index>(free.free_count());
     if (free_count == 0) {
       return;
     }
@@ -191,20 +141,20 @@ struct MatrixBlock {
       NodeMap X(x.data() + velocity_offset, velocity_count / 3, 3);
       rhs_free.resize(free_count, 3);
       for (Eigen::Index i = 0; i < free_count; ++i) {
-        rhs_free.row(i) = R.row(free_list[static_cast<size_t>(i)]);
+        rhs_free.row(i) = R.row(free.free_unknown(static_cast<int>(i)));
       }
       x_free = solver.solve(rhs_free);
       for (Eigen::Index i = 0; i < free_count; ++i) {
-        X.row(free_list[static_cast<size_t>(i)]) = x_free.row(i);
+        X.row(free.free_unknown(static_cast<int>(i))) = x_free.row(i);
       }
     } else {
       rhs_free.resize(free_count, 1);
       for (Eigen::Index i = 0; i < free_count; ++i) {
-        rhs_free(i, 0) = r[velocity_offset + free_list[static_cast<size_t>(i)]];
+        rhs_free(i, 0) = r[velocity_offset + free.free_unknown(static_cast<int>(i))];
       }
       x_free = solver.solve(rhs_free);
       for (Eigen::Index i = 0; i < free_count; ++i) {
-        x[velocity_offset + free_list[static_cast<size_t>(i)]] = x_free(i, 0);
+        x[velocity_offset + free.free_unknown(static_cast<int>(i))] = x_free(i, 0);
       }
     }
   }

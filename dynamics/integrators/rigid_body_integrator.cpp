@@ -3,32 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "core/error.h"
+#include "core/rotation.h"
 
 namespace dnurbs {
 
 namespace {
 
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& p) {
-  Eigen::Matrix3d m;
-  m << 0.0, -p.z(), p.y(), p.z(), 0.0, -p.x(), -p.y(), p.x(), 0.0;
-  return m;
-}
-
-/// cay(h [w]_x) as a unit quaternion: proportional to (1, h w / 2).
-Eigen::Quaterniond cayley(const Eigen::Vector3d& hw) {
-  return Eigen::Quaterniond(1.0, 0.5 * hw.x(), 0.5 * hw.y(), 0.5 * hw.z()).normalized();
-}
-
 /// One body's data and its step unknowns.
 struct Body {
-  const DeformableSuperquadricModel* model = nullptr;
   int coordinate_offset = 0;
   int velocity_offset = 0;
   double mass = 0.0;
@@ -75,25 +64,22 @@ void RigidBodyIntegrator::step(System& system, double dt) {
   // Bodies: centre-of-mass state from (c, quaternion, cdot, w) ----------------------------------
   std::vector<Body> bodies(static_cast<size_t>(system.model_count()));
   for (int i = 0; i < system.model_count(); ++i) {
-    const auto* model = dynamic_cast<const DeformableSuperquadricModel*>(&system.model(i));
-    if (model == nullptr || !model->is_rigid() || !model->settings().parts.translation ||
-        !model->settings().parts.rotation) {
+    const std::optional<RigidBodyProperties> rigid = system.model(i).rigid_body();
+    if (!rigid) {
       throw make_error("model ", i,
-                       " is not a rigid deformable superquadric with free translation and "
-                       "rotation: the rigid body integrator cannot step it");
+                       " is not a free rigid body (a rigid model with free translation and "
+                       "rotation): the rigid body integrator cannot step it");
     }
     Body& body = bodies[static_cast<size_t>(i)];
-    body.model = model;
     body.coordinate_offset = system.coordinate_offset(i);
     body.velocity_offset = system.velocity_offset(i);
-    const RigidMassProperties& props = model->reference_mass_properties();
-    body.mass = props.mass;
-    body.centre_offset = props.centre_of_mass;
-    body.inertia = props.inertia_about_centre;
-    body.alpha = model->settings().damping_alpha;
-    const auto qi = q.segment(body.coordinate_offset, model->coordinate_count());
-    const auto vi = qd.segment(body.velocity_offset, model->velocity_count());
-    body.orientation = model->orientation(qi);
+    body.mass = rigid->mass.mass;
+    body.centre_offset = rigid->mass.centre_of_mass;
+    body.inertia = rigid->mass.inertia_about_centre;
+    body.alpha = rigid->damping_alpha;
+    const auto qi = q.segment<7>(body.coordinate_offset);
+    const auto vi = qd.segment<6>(body.velocity_offset);
+    body.orientation = unit_quaternion(qi.segment<4>(3));
     const Eigen::Matrix3d rotation = body.orientation.toRotationMatrix();
     body.omega = vi.segment<3>(3);
     body.x = qi.head<3>() + rotation * body.centre_offset;

@@ -33,16 +33,16 @@ struct RigidBodyIntegratorSettings {
   int max_iterations = 50;
 };
 
-/// Steps a System whose models are all rigid DeformableSuperquadricModels with translation and
-/// rotation free (DeformableSuperquadricParts::rigid()) and no fixed coordinates. Rayleigh alpha
-/// damping is honoured (beta multiplies K = 0).
+/// Steps a System whose models are all free rigid bodies (Model::rigid_body: rigid deformable
+/// superquadrics with translation and rotation free) and has no fixed coordinates. Rayleigh
+/// alpha damping is honoured (beta multiplies K = 0).
 class RigidBodyIntegrator {
  public:
   /// Throws Error naming a non-positive tolerance or iteration count.
   explicit RigidBodyIntegrator(RigidBodyIntegratorSettings settings = {});
 
   /// Advances `system` by dt. Throws Error naming dt if it is not positive and finite, naming the
-  /// model if one is not a free rigid superquadric, and (state untouched) if the iteration does
+  /// model if one is not a free rigid body, and (state untouched) if the iteration does
   /// not converge or produces a non-finite state.
   void step(System& system, double dt);
 

@@ -3,27 +3,12 @@
 #include <cmath>
 #include <vector>
 
-#include "dynamics/grid/terzopoulos_surface.h"
 #include "core/error.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
 namespace {
-
-// A (x) I_3 for a #nodes by #nodes matrix A.
-SparseMatrix kron_identity3(const SparseMatrix& a) {
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
-    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
-      for (int c = 0; c < 3; ++c) {
-        triplets.emplace_back(3 * it.row() + c, 3 * it.col() + c, it.value());
-      }
-    }
-  }
-  SparseMatrix result(3 * a.rows(), 3 * a.cols());
-  result.setFromTriplets(triplets.begin(), triplets.end());
-  return result;
-}
 
 void append(const SparseMatrix& a, int offset, double scale,
             std::vector<Eigen::Triplet<double>>& out) {
@@ -66,16 +51,9 @@ void SemiImplicitStepper::step(System& system, double dt) {
 
   // Node layout (every model S (x) I_3 with whole nodes fixed): one scalar matrix, x, y and z
   // as three right-hand sides; otherwise one matrix over every coordinate.
-  bool nodal = n % 3 == 0;
+  bool nodal = n % 3 == 0 && fixed_nodes(fixed, 3).has_value();
   for (int m = 0; m < system.model_count() && nodal; ++m) {
-    const Model& model = system.model(m);
-    nodal = system.velocity_offset(m) % 3 == 0 &&
-            (dynamic_cast<const TerzopoulosSurface*>(&model) != nullptr ||
-             model.kronecker_block_size() == 3);
-  }
-  for (size_t i = 0; i < fixed.size() && nodal; i += 3) {
-    nodal = i + 2 < fixed.size() && fixed[i] % 3 == 0 && fixed[i + 1] == fixed[i] + 1 &&
-            fixed[i + 2] == fixed[i] + 2;
+    nodal = system.velocity_offset(m) % 3 == 0 && system.model(m).semi_implicit_block_size() == 3;
   }
   const int block = nodal ? 3 : 1;
   const int unknowns = n / block;
@@ -85,30 +63,11 @@ void SemiImplicitStepper::step(System& system, double dt) {
     const int offset = system.velocity_offset(m);
     const int size = model.velocity_count();
     const auto qm = q.segment(offset, size);
+    // The model's matrices of eq 1.13 at the current state (Terzopoulos surfaces: the matrix
+    // from the current tensors, not symmetric for the christoffel normal).
     ModelMatrices matrices;
-    SparseMatrix stiffness;
-    if (const auto* surface = dynamic_cast<const TerzopoulosSurface*>(&model)) {
-      // seed 000: the matrix from the current tensors (not symmetric for the christoffel normal).
-      const SparseMatrix k = surface->linearized_stiffness(qm);
-      const double area = surface->grid().spacing() * surface->grid().spacing();
-      const int nodes = size / 3;
-      SparseMatrix identity(nodes, nodes);
-      identity.setIdentity();
-      matrices.mass = surface->material().mass_density * area * identity;
-      matrices.damping = surface->material().damping_density * area * identity;
-      stiffness = k;
-      if (!nodal) {
-        matrices.mass = kron_identity3(matrices.mass);
-        matrices.damping = kron_identity3(matrices.damping);
-        stiffness = kron_identity3(k);
-      }
-    } else if (nodal) {
-      matrices = *model.scalar_matrices();
-      stiffness = matrices.stiffness;
-    } else {
-      model.assemble_matrices(qm, matrices);
-      stiffness = matrices.stiffness;
-    }
+    model.semi_implicit_matrices(qm, nodal, matrices);
+    const SparseMatrix& stiffness = matrices.stiffness;
     append(matrices.mass, offset / block, 1.0 / (dt * dt), triplets);
     append(stiffness, offset / block, 1.0, triplets);
     const bool damped = matrices.damping.nonZeros() > 0;

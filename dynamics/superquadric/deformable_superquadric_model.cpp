@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/rotation.h"
 #include "nurbs/gauss_legendre.h"
 #include "surface/signed_power.h"
 
@@ -15,7 +16,7 @@ namespace dnurbs {
 
 namespace {
 
-using Shape = SuperquadricShapeParameter;
+using Parameter = SuperquadricShapeParameter;
 constexpr int kShapeCount = kSuperquadricShapeParameterCount;
 /// Largest number of velocities in the dense block of M: c (3), w (3), q_s (14).
 constexpr int kMaxRigidCount = 6 + kShapeCount;
@@ -25,21 +26,6 @@ using ShapeJacobian = Eigen::Matrix<double, 3, kShapeCount>;
 /// The dense (c, w, q_s) block of M.
 using DenseBlock =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRigidCount, kMaxRigidCount>;
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& p) {
-  Eigen::Matrix3d m;
-  m << 0.0, -p.z(), p.y(), p.z(), 0.0, -p.x(), -p.y(), p.x(), 0.0;
-  return m;
-}
-
-/// exp of the body-frame rotation vector w as a unit quaternion: (cos(|w|/2), sin(|w|/2) w/|w|).
-Eigen::Quaterniond quaternion_exp(const Eigen::Vector3d& w) {
-  const double angle = w.norm();
-  const double half = 0.5 * angle;
-  // sin(half)/angle, by its Taylor series where the quotient loses digits.
-  const double sinc = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(half) / angle;
-  return Eigen::Quaterniond(std::cos(half), sinc * w.x(), sinc * w.y(), sinc * w.z());
-}
 
 void check_finite(double value, const char* name) {
   if (!std::isfinite(value)) {
@@ -122,9 +108,9 @@ DeformableSuperquadricParts DeformableSuperquadricParts::rigid() {
 
 DeformableSuperquadricParts DeformableSuperquadricParts::global() {
   DeformableSuperquadricParts parts;
-  for (const int k : {Shape::kAspect1, Shape::kAspect2, Shape::kAspect3, Shape::kSquareness1,
-                      Shape::kSquareness2, Shape::kTaper1, Shape::kTaper2, Shape::kBendAmplitude,
-                      Shape::kTwist, Shape::kShearX, Shape::kShearY}) {
+  for (const int k : {Parameter::kAspect1, Parameter::kAspect2, Parameter::kAspect3, Parameter::kSquareness1,
+                      Parameter::kSquareness2, Parameter::kTaper1, Parameter::kTaper2, Parameter::kBendAmplitude,
+                      Parameter::kTwist, Parameter::kShearX, Parameter::kShearY}) {
     parts.shape[static_cast<size_t>(k)] = true;
   }
   return parts;
@@ -154,13 +140,13 @@ DeformableSuperquadricModel::DeformableSuperquadricModel(const SuperquadricShape
   for (int k = 0; k < kShapeCount; ++k) {
     check_finite(shape[k], shape_names[k]);
   }
-  for (int k = Shape::kScale; k <= Shape::kAspect3; ++k) {
+  for (int k = Parameter::kScale; k <= Parameter::kAspect3; ++k) {
     if (!(shape[k] > 0.0)) {
       throw make_error("deformable superquadric ", shape_names[k], " = ", shape[k],
                        " must be positive");
     }
   }
-  for (int k = Shape::kSquareness1; k <= Shape::kSquareness2; ++k) {
+  for (int k = Parameter::kSquareness1; k <= Parameter::kSquareness2; ++k) {
     if (!(shape[k] >= kMinSquareness && shape[k] <= kMaxSquareness)) {
       throw make_error("deformable superquadric ", shape_names[k], " = ", shape[k], " is outside [",
                        kMinSquareness, ", ", kMaxSquareness, "]");
@@ -256,10 +242,10 @@ DeformableSuperquadricModel::DeformableSuperquadricModel(const SuperquadricShape
   // Quadrature tables: seed 001 eq 1.38, M = integral mu L^T L dA with dA = |s_u x s_v| du dv of
   // the reference shape ---------------------------------------------------------------------
   if (settings_.graded_quadrature &&
-      (shape[Shape::kSquareness1] < 1.0 || shape[Shape::kSquareness2] < 1.0)) {
+      (shape[Parameter::kSquareness1] < 1.0 || shape[Parameter::kSquareness2] < 1.0)) {
     const GaussLegendreRule& rule = gauss_legendre_rule(settings_.quadrature_points);
-    const double p_u = std::max(1.0, 1.0 / shape[Shape::kSquareness1]);
-    const double p_v = std::max(1.0, 1.0 / shape[Shape::kSquareness2]);
+    const double p_u = std::max(1.0, 1.0 / shape[Parameter::kSquareness1]);
+    const double p_v = std::max(1.0, 1.0 / shape[Parameter::kSquareness2]);
     const bool grade_u = p_u > 1.0;
     const bool grade_v = p_v > 1.0;
     std::vector<double> nodes_u, weights_u, nodes_v, weights_v;
@@ -396,8 +382,8 @@ DeformableSuperquadricModel::DeformableSuperquadricModel(const SuperquadricShape
     Eigen::MatrixXd coupling;
     assemble_dense_mass(decode(initial_coordinates_), mass_rr, coupling);
     const double h =
-        shape[Shape::kScale] *
-        std::max({shape[Shape::kAspect1], shape[Shape::kAspect2], shape[Shape::kAspect3]});
+        shape[Parameter::kScale] *
+        std::max({shape[Parameter::kAspect1], shape[Parameter::kAspect2], shape[Parameter::kAspect3]});
     for (int i = 0; i < shape_free; ++i) {
       const int row = shape_velocity_offset_ + i;
       shape_regularization_[i] =
@@ -437,12 +423,7 @@ Eigen::Quaterniond DeformableSuperquadricModel::orientation(ConstVectorRef q) co
   if (!settings_.parts.rotation) {
     return initial_orientation_;
   }
-  const auto w = q.segment<4>(quaternion_offset_);
-  const double norm = w.norm();
-  if (!(norm > 0.0) || !std::isfinite(norm)) {
-    throw make_error("deformable superquadric quaternion has norm ", norm);
-  }
-  return Eigen::Quaterniond(w[0] / norm, w[1] / norm, w[2] / norm, w[3] / norm);
+  return unit_quaternion(q.segment<4>(quaternion_offset_));
 }
 
 SuperquadricShapeParameters DeformableSuperquadricModel::shape_parameters(ConstVectorRef q) const {
@@ -861,10 +842,10 @@ void DeformableSuperquadricModel::project_state(Eigen::Ref<Eigen::VectorXd> q,
     const int k = free_shape_[i];
     double lower = -std::numeric_limits<double>::infinity();
     double upper = std::numeric_limits<double>::infinity();
-    if (k == Shape::kSquareness1 || k == Shape::kSquareness2) {
+    if (k == Parameter::kSquareness1 || k == Parameter::kSquareness2) {
       lower = kMinSquareness;
       upper = kMaxSquareness;
-    } else if (k <= Shape::kAspect3) {
+    } else if (k <= Parameter::kAspect3) {
       lower = 1e-3 * initial_shape_[k];
     }
     double& value = q[shape_coordinate_offset_ + static_cast<int>(i)];
@@ -939,6 +920,43 @@ Eigen::Vector3d DeformableSuperquadricModel::angular_momentum(ConstVectorRef q,
     momentum += pt.mass * x.cross(state.rotation * body);
   });
   return momentum;
+}
+
+// Contract ---------------------------------------------------------------------------------------
+
+int DeformableSuperquadricModel::velocity_coordinate(int velocity) const {
+  if (velocity < 0 || velocity >= velocity_count_) {
+    throw make_error("velocity index ", velocity, " is outside 0..", velocity_count_ - 1);
+  }
+  const int translation = translation_velocity_offset();
+  if (translation >= 0 && velocity < translation + 3) {
+    return translation_coordinate_offset() + velocity - translation;
+  }
+  if (rotation_velocity_offset_ >= 0 && velocity >= rotation_velocity_offset_ &&
+      velocity < rotation_velocity_offset_ + 3) {
+    return -1;
+  }
+  if (local_velocity_offset_ >= 0 && velocity >= local_velocity_offset_) {
+    return local_coordinate_offset_ + velocity - local_velocity_offset_;
+  }
+  return shape_coordinate_offset_ + velocity - shape_velocity_offset_;
+}
+
+std::optional<RigidBodyProperties> DeformableSuperquadricModel::rigid_body() const {
+  if (!rigid_ || !settings_.parts.translation || !settings_.parts.rotation) {
+    return std::nullopt;
+  }
+  return RigidBodyProperties{rigid_properties_, settings_.damping_alpha};
+}
+
+ParameterDomain DeformableSuperquadricModel::parameter_domain(ConstVectorRef /*q*/) const {
+  return superquadric_parameter_domain();
+}
+
+void DeformableSuperquadricModel::fix_point(int i) {
+  throw make_error("point ", i,
+                   " cannot be fixed: a superquadric has no control points or nodes (constrain a "
+                   "material point instead)");
 }
 
 }  // namespace dnurbs

@@ -74,6 +74,8 @@ struct DeformableSuperquadricParts {
   static DeformableSuperquadricParts global();
   /// global() plus the local displacements q_d.
   static DeformableSuperquadricParts full();
+
+  bool operator==(const DeformableSuperquadricParts&) const = default;
 };
 
 /// Settings of a deformable superquadric model.
@@ -109,14 +111,6 @@ struct DeformableSuperquadricSettings {
   /// 0.1 % extra inertia on q_s and q_d; 0 is fine where M is regular (rigid or all-fixed
   /// redundancies). It never affects c and w, so momentum balances are unchanged.
   double regularization = 1e-3;
-};
-
-/// Mass properties of a body: m, m-weighted centre and inertia tensors (body frame).
-struct RigidMassProperties {
-  double mass = 0.0;                                               ///< m = integral mu dA
-  Eigen::Vector3d centre_of_mass = Eigen::Vector3d::Zero();        ///< (1/m) integral mu p dA
-  Eigen::Matrix3d inertia_about_origin = Eigen::Matrix3d::Zero();  ///< integral mu [p]_x^T [p]_x
-  Eigen::Matrix3d inertia_about_centre = Eigen::Matrix3d::Zero();  ///< parallel-axis shifted
 };
 
 /// The deformable superquadric as a Model.
@@ -174,6 +168,17 @@ class DeformableSuperquadricModel : public Model {
   /// a, a1, a2, a3 >= 1e-3 times their construction value, removing the velocity component that
   /// points further out where a bound is hit (an inelastic stop).
   void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
+  /// c, q_s and q_d velocities map to their coordinates; the body angular velocity has none.
+  int velocity_coordinate(int velocity) const override;
+  /// A rigid model with translation and rotation free: its reference mass properties and
+  /// Rayleigh alpha.
+  std::optional<RigidBodyProperties> rigid_body() const override;
+  /// superquadric_parameter_domain(): u in [-pi/2, pi/2] with poles, v in [-pi, pi) periodic.
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// (latitude, longitude): the outward normal is S_v x S_u.
+  NormalOrientation normal_orientation() const override { return NormalOrientation::kSvCrossSu; }
+  /// Throws Error: a superquadric has no control points or nodes.
+  void fix_point(int i) override;
 
   // Layout -------------------------------------------------------------------------------------
   const DeformableSuperquadricSettings& settings() const { return settings_; }

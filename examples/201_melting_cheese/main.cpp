@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   cheese.mass_density = 1.0;
   cheese.damping_density = 0.01;  // eta = xi = 0 (the defaults)
   TerzopoulosSurface slice(grid, flat_grid_positions(grid, Eigen::Vector3d(-8, -8, 0)), cheese);
-  slice.clamp_border();
+  slice.fix_border();
 
   System system(slice);
   system.add_force(0, gravity(Eigen::Vector3d(0, 0, -1e-4)));

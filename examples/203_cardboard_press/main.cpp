@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     const double x0 = normal == NormalApproximation::kClassic ? -1.1 : 0.1;
     TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d(x0, 0, 0)), cardboard,
                              settings);
-    sheet.clamp_border();
+    sheet.fix_border();
     const int index = system.add_model(sheet);
     // The press: a ramped normal force on the 3 by 3 nodes around the centre.
     for (int j = 7; j <= 9; ++j) {

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     rubber.damping_density = 0.02;
     rubber.eta << etas[k], etas[k], etas[k], etas[k];
     TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d(-4, -4, 0)), rubber);
-    sheet.clamp_border();
+    sheet.fix_border();
     System system(sheet);
     system.add_force(0, gravity(Eigen::Vector3d(0, 0, -1e-5)));
     SemiImplicitStepper stepper;

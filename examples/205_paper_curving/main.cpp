@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
       settings.normal = normal;
       TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), paper,
                                settings);
-      sheet.clamp_border();
+      sheet.fix_border();
       System system(sheet);
       for (int j = 7; j <= 9; ++j) {
         for (int i = 7; i <= 9; ++i) {

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     TerzopoulosSettings settings;
     settings.normal = NormalApproximation::kChristoffel;
     TerzopoulosSurface curtain(grid, rest, cloth, settings);
-    curtain.clamp_node(0);
+    curtain.fix_point(0);
     for (int i = 1; i < grid.nu(); ++i) {  // the rail: the upper line keeps its height
       curtain.fix_coordinate(3 * grid.index(i, 0) + 2);
     }

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
 
   const Grid grid(41, 41, 1.0 / 40);  // a unit square
   PdeSurfaceMaterial material;        // b = d = 1, c = 2: the biharmonic
-  material.damping = 10.0;
+  material.damping_density = 10.0;
   const std::vector<Eigen::Vector3d> centres{{0.3, 0.3, 0.0}, {0.7, 0.6, 0.0}};
   const PdeSurface surface(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), material,
                            {{centres[0], 0.25}, {centres[1], 0.2}});

@@ -57,7 +57,7 @@ TEST(LongRest, TerzopoulosSheetAtRestDoesNotDriftUnderNewmark) {
   material.eta << 1.0, 0.0, 0.0, 1.0;
   material.xi << 0.1, 0.1, 0.1, 0.1;
   TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), material);
-  sheet.clamp_border();
+  sheet.fix_border();
   System system(sheet);
   const Eigen::VectorXd rest = system.coordinates();
   Integrator integrator;

@@ -262,7 +262,7 @@ System bent_sheet(double xi) {
   material.eta << 1.0, 0.0, 0.0, 1.0;
   material.xi << xi, xi, xi, xi;
   TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), material);
-  sheet.clamp_border();
+  sheet.fix_border();
   NodePositions bent = sheet.rest_positions();
   for (int j = 0; j < grid.nv(); ++j) {
     for (int i = 0; i < grid.nu(); ++i) {

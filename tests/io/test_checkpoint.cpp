@@ -18,6 +18,7 @@
 
 #include "io/csv_log.h"
 #include "io/scene.h"
+#include "io/scene_forces.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
 #include "core/error.h"
@@ -226,7 +227,7 @@ TEST(DivergingRun, NonFiniteStepKeepsTheLastGoodState) {
   ScenePointForce point;
   point.at = Eigen::Vector2d(0.5, 0.5);
   point.force.values = {Eigen::Vector3d(0, 0, 1e308)};
-  huge.spec = point;
+  huge.spec = std::make_unique<ScenePointForce>(point);
   huge.start = 0.035;
   scene.forces = {huge, huge};
   SceneSimulation simulation(scene);

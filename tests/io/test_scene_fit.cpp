@@ -12,7 +12,11 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "io/models/dnurbs_curve_scene.h"
+#include "io/models/dnurbs_surface_scene.h"
+#include "io/models/superquadric_scene.h"
 #include "io/scene.h"
+#include "io/scene_fit.h"
 #include "io/scene_simulation.h"
 #include "io/shape_file.h"
 #include "core/error.h"
@@ -22,6 +26,19 @@ namespace dnurbs {
 namespace {
 
 const std::filesystem::path kData = DNURBS_TEST_DATA_DIR;
+
+// A scene parsed and its fits run (parsing itself runs no fit).
+Scene fitted_scene(const std::string& text, const std::string& source = "<string>",
+                   const std::filesystem::path& directory = {}) {
+  Scene scene = parse_scene_json(text, source, directory);
+  fit_initial_shapes(scene);
+  return scene;
+}
+
+template <typename Spec>
+const Spec& as(const SceneModel& model) {
+  return dynamic_cast<const Spec&>(*model.spec);
+}
 
 const char* const kSurfaceFitScene = R"json({
   "models": [{"name": "scan", "type": "dnurbs_surface",
@@ -42,22 +59,22 @@ const char* const kSuperquadricFitScene = R"json({
 })json";
 
 TEST(SceneFit, FittedSurfaceReproducesTheSampledSurface) {
-  const Scene scene = parse_scene_json(kSurfaceFitScene, "fit.json", kData);
-  const auto& spec = std::get<SceneDNurbsSurface>(scene.models[0].spec);
+  const Scene scene = fitted_scene(kSurfaceFitScene, "fit.json", kData);
+  const auto& spec = as<SceneDNurbsSurface>(scene.models[0]);
   ASSERT_TRUE(spec.fit.has_value());
   const NurbsSurface source =
       std::get<NurbsSurface>(read_shape_file(kData / "fit_surface_source.json"));
-  EXPECT_EQ(spec.surface.knots_u().knots(), source.knots_u().knots());
-  EXPECT_EQ(spec.surface.knots_v().knots(), source.knots_v().knots());
+  EXPECT_EQ(spec.surface->knots_u().knots(), source.knots_u().knots());
+  EXPECT_EQ(spec.surface->knots_v().knots(), source.knots_v().knots());
   // The points lie on the source (same degree and knots) and the flat start over their
   // principal plane projects each to its own parameters (generate_fit_points.py), so the first
   // least-squares solve recovers the control points up to rounding
-  EXPECT_LT(testing::control_point_distance_up_to_symmetry(spec.surface, source), 1e-8);
+  EXPECT_LT(testing::control_point_distance_up_to_symmetry(*spec.surface, source), 1e-8);
 }
 
 TEST(SceneFit, FittedSuperquadricReproducesTheSampledShape) {
-  const Scene scene = parse_scene_json(kSuperquadricFitScene, "fit.json", kData);
-  const auto& spec = std::get<SceneSuperquadric>(scene.models[0].spec);
+  const Scene scene = fitted_scene(kSuperquadricFitScene, "fit.json", kData);
+  const auto& spec = as<SceneSuperquadric>(scene.models[0]);
   ASSERT_TRUE(spec.fit.has_value());
   // generate_fit_points.py: sizes 1.2, 0.8, 0.6, e1 0.7, e2 1.3, taper 0.2, -0.1, no bend.
   // Exact points: the error is the optimiser's stopping tolerance (2.4e-8 measured)
@@ -97,9 +114,9 @@ TEST(SceneFit, FitRoundTripsThroughTheWriter) {
 }
 
 TEST(SceneFit, FittedModelsStartFromTheFitAndRun) {
-  const Scene scene = parse_scene_json(kSurfaceFitScene, "fit.json", kData);
+  const Scene scene = fitted_scene(kSurfaceFitScene, "fit.json", kData);
   SceneSimulation simulation(scene);
-  const NurbsSurface& fitted = std::get<SceneDNurbsSurface>(scene.models[0].spec).surface;
+  const NurbsSurface& fitted = *as<SceneDNurbsSurface>(scene.models[0]).surface;
   EXPECT_EQ(shape_to_json(*simulation.shape(0)), shape_to_json(Shape(fitted)));
   const Eigen::Vector3d before = fitted.point(0.5, 0.5);
   for (int i = 0; i < scene.step_count(); ++i) {
@@ -125,8 +142,8 @@ TEST(SceneFit, CurveFitRecoversAStraightLineOfPoints) {
   }
   const std::string text = R"({"models": [{"type": "dnurbs_curve", "fit": {"points": ")" +
                            file.string() + R"(", "degree": 3, "spans": 2}}], "run": {"steps": 1}})";
-  const Scene scene = parse_scene_json(text);
-  const NurbsCurve& curve = std::get<SceneDNurbsCurve>(scene.models[0].spec).curve;
+  const Scene scene = fitted_scene(text);
+  const NurbsCurve& curve = *as<SceneDNurbsCurve>(scene.models[0]).curve;
   EXPECT_EQ(curve.degree(), 3);
   EXPECT_EQ(curve.control_point_count(), 5);
   const Eigen::Vector3d a = curve.point(0.0);
@@ -142,7 +159,7 @@ TEST(SceneFit, BadFitsNameTheirJsonPath) {
     const std::string text =
         R"({"models": [{"type": "dnurbs_surface", "fit": )" + fit + R"(}], "run": {"steps": 1}})";
     try {
-      parse_scene_json(text, "bad.json", kData);
+      fitted_scene(text, "bad.json", kData);
     } catch (const Error& error) {
       return std::string(error.what());
     }

@@ -68,10 +68,11 @@ TEST(RunCommand, DefaultDemoWritesFramesLogFinalMeshPreviewAndShapes) {
   EXPECT_EQ(meshes[0].triangle_count(), 2 * 6 * 6);
   EXPECT_EQ(meshes[1].name, "torus");
   EXPECT_EQ(meshes[1].triangle_count(), 2 * 6 * 3);
+  // Superquadrics: 6 x 6 cells with a fan of 6 triangles at each pole (one vertex per pole)
   EXPECT_EQ(meshes[2].name, "link");
-  EXPECT_EQ(meshes[2].triangle_count(), 2 * 6 * 6);
+  EXPECT_EQ(meshes[2].triangle_count(), 2 * 6 * 4 + 2 * 6);
   EXPECT_EQ(meshes[3].name, "bob");
-  EXPECT_EQ(meshes[3].triangle_count(), 2 * 6 * 6);
+  EXPECT_EQ(meshes[3].triangle_count(), 2 * 6 * 4 + 2 * 6);
   // The springs raised the crown: the highest vertex of the hat is well above the flat sheet
   EXPECT_GT(meshes[0].vertices.col(2).maxCoeff(), 0.5);
   // The log has the initial row and one per step, with the probe columns

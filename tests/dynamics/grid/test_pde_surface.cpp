@@ -23,7 +23,7 @@ Grid square_grid() {
 
 PdeSurfaceMaterial damped_material() {
   PdeSurfaceMaterial material;
-  material.damping = 20.0;  // settles within the simulated second
+  material.damping_density = 20.0;  // settles within the simulated second
   return material;
 }
 
@@ -84,8 +84,8 @@ TEST(PdeSurface, InternalForceIsMinusTheEnergyGradient) {
   material.b = 0.7;
   material.c = 1.3;
   material.d = 0.4;
-  material.su0 = 0.5;
-  material.sv1 = -0.25;
+  material.tangent_u0 = 0.5;
+  material.tangent_v1 = -0.25;
   const PdeSurface surface(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), material);
   Eigen::VectorXd q = surface.initial_coordinates();
   for (Eigen::Index i = 0; i < q.size(); ++i) {
@@ -160,7 +160,7 @@ TEST(PdeSurface, SeveralForcesAtOnceSimulateTheUnionOfTheirRegions) {
 TEST(PdeSurface, BoundaryTangentsDeformWithoutForce) {
   // seed 002 figure 9: su0 != 0 lifts the surface along the rest normal (+z) near u = 0.
   PdeSurfaceMaterial material = damped_material();
-  material.su0 = 1.0;
+  material.tangent_u0 = 1.0;
   const Grid grid = square_grid();
   const PdeSurface surface(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()), material);
   System system(surface);
@@ -189,7 +189,7 @@ TEST(PdeSurface, BadInputNamesTheValue) {
   negative.b = -1.5;
   EXPECT_NE(message([&] { PdeSurface(grid, rest, negative); }).find("-1.5"), std::string::npos);
   PdeSurfaceMaterial not_finite;
-  not_finite.su1 = std::nan("");
+  not_finite.tangent_u1 = std::nan("");
   EXPECT_NE(message([&] { PdeSurface(grid, rest, not_finite); }).find("su1"), std::string::npos);
   EXPECT_NE(message([&] {
               PdeSurface(grid, rest, {}, {{Eigen::Vector3d(0.5, 0.5, 0), 0.03}});

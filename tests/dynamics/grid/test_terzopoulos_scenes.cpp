@@ -28,7 +28,7 @@ TEST(CardboardPress, BothNormalsAgreeForSmallCurvingResistance) {
     settings.normal = normal;
     TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()),
                              test::sheet_material(0.01, 0.0, 1e-8, 0.5), settings);
-    sheet.clamp_border();
+    sheet.fix_border();
     System system(sheet);
     system.add_force(0, point_force(Eigen::Vector2d(0.5, 0.5), Eigen::Vector3d(0, 0, -0.002)));
     SemiImplicitStepper stepper;
@@ -93,7 +93,7 @@ TEST(Curtains, TheUpperLineOpensTheCurtainAndKeepsItsHeight) {
     settings.normal = NormalApproximation::kChristoffel;
     TerzopoulosMaterial cloth = test::sheet_material(1e-3, 1e-6, xi, 0.002);
     TerzopoulosSurface curtain(grid, rest, cloth, settings);
-    curtain.clamp_node(0);
+    curtain.fix_point(0);
     for (int i = 1; i < grid.nu(); ++i) {
       curtain.fix_coordinate(3 * grid.index(i, 0) + 2);
     }

@@ -51,7 +51,7 @@ PaperResult run_paper_scene(NormalApproximation normal, double xi) {
   settings.normal = normal;
   TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()),
                            sheet_material(0.1, 0.0, xi, 0.5), settings);
-  sheet.clamp_border();
+  sheet.fix_border();
   System system(sheet);
   const double force = 0.01;
   for (int j = 7; j <= 9; ++j) {
@@ -97,7 +97,7 @@ TEST(TerzopoulosSurface, FlatSheetAtRestStaysAtRestFor10000Steps) {
     settings.normal = normal;
     TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d(0.3, -0.2, 1.0)),
                              sheet_material(0.01, 0.006, 1e-4, 0.1), settings);
-    sheet.clamp_node(0);
+    sheet.fix_point(0);
     System seed_system(sheet);
     System common_system(sheet);
     SemiImplicitStepper stepper;
@@ -253,7 +253,7 @@ TEST(RubberSheet, LargerEtaSagsLess) {
   for (const double eta : {7e-7, 4e-6, 3e-5, 1e-2}) {
     TerzopoulosSurface sheet(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()),
                              sheet_material(eta, eta, 0.0, 0.02));
-    sheet.clamp_border();
+    sheet.fix_border();
     System system(sheet);
     system.add_force(0, gravity(Eigen::Vector3d(0, 0, -1e-5)));
     SemiImplicitStepper stepper;
@@ -277,7 +277,7 @@ TEST(TerzopoulosSurface, ClampedNodesNeverMove) {
     settings.normal = normal;
     TerzopoulosSurface cheese(grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()),
                               sheet_material(0.0, 0.0, 0.0, 0.1), settings);
-    cheese.clamp_border();
+    cheese.fix_border();
     System seed_system(cheese);
     seed_system.add_force(0, gravity(Eigen::Vector3d(0, 0, -9.81)));
     System common_system = seed_system;
@@ -329,7 +329,7 @@ TEST(TerzopoulosSurface, BadInputNamesTheValue) {
   EXPECT_NE(message([&] { TerzopoulosSurface(grid, rest, {}, settings); }).find("delta"),
             std::string::npos);
   TerzopoulosSurface surface(grid, rest);
-  EXPECT_THROW(surface.clamp_node(25), Error);
+  EXPECT_THROW(surface.fix_point(25), Error);
 }
 
 TEST(TerzopoulosSurface, SeedStepAndCommonIntegratorsReachTheSameEquilibrium) {
@@ -346,7 +346,7 @@ TEST(TerzopoulosSurface, SeedStepAndCommonIntegratorsReachTheSameEquilibrium) {
         grid, flat_grid_positions(grid, Eigen::Vector3d::Zero()),
         sheet_material(0.1, 0.02, normal == NormalApproximation::kClassic ? 0.0 : 1e-5, 5.0),
         settings);
-    sheet.clamp_border();
+    sheet.fix_border();
     System seed_system(sheet);
     seed_system.add_force(0, point_force(Eigen::Vector2d(0.5, 0.5), Eigen::Vector3d(0, 0, -0.01)));
     System euler_system = seed_system;

@@ -1,0 +1,55 @@
+#include "core/kronecker.h"
+
+#include "core/error.h"
+
+namespace dnurbs {
+
+SparseMatrix kronecker_identity(const SparseMatrix& scalar, int block_size) {
+  if (block_size < 1) {
+    throw make_error("Kronecker block size ", block_size, " must be at least 1");
+  }
+  const auto n = scalar.rows();
+  SparseMatrix result(n * block_size, scalar.cols() * block_size);
+  Eigen::VectorXi sizes(scalar.cols() * block_size);
+  for (Eigen::Index j = 0; j < scalar.cols(); ++j) {
+    for (int c = 0; c < block_size; ++c) {
+      sizes[j * block_size + c] = static_cast<int>(scalar.col(j).nonZeros());
+    }
+  }
+  result.reserve(sizes);
+  for (Eigen::Index j = 0; j < scalar.outerSize(); ++j) {
+    for (int c = 0; c < block_size; ++c) {
+      for (SparseMatrix::InnerIterator it(scalar, j); it; ++it) {
+        result.insert(it.row() * block_size + c, j * block_size + c) = it.value();
+      }
+    }
+  }
+  result.makeCompressed();
+  return result;
+}
+
+std::optional<std::vector<int>> fixed_nodes(const std::vector<int>& fixed, int block_size) {
+  if (block_size < 1) {
+    throw make_error("Kronecker block size ", block_size, " must be at least 1");
+  }
+  const auto block = static_cast<size_t>(block_size);
+  if (fixed.size() % block != 0) {
+    return std::nullopt;
+  }
+  std::vector<int> nodes;
+  nodes.reserve(fixed.size() / block);
+  for (size_t i = 0; i < fixed.size(); i += block) {
+    if (fixed[i] % block_size != 0) {
+      return std::nullopt;
+    }
+    for (size_t c = 1; c < block; ++c) {
+      if (fixed[i + c] != fixed[i] + static_cast<int>(c)) {
+        return std::nullopt;
+      }
+    }
+    nodes.push_back(fixed[i] / block_size);
+  }
+  return nodes;
+}
+
+}  // namespace dnurbs

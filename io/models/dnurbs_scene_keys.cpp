@@ -1,0 +1,91 @@
+#include "io/models/dnurbs_scene_keys.h"
+
+#include <variant>
+
+#include "io/json_messages.h"
+
+namespace dnurbs {
+
+template <typename ShapeType>
+ShapeType read_scene_shape(const SceneReader& reader, const JsonValue& model,
+                           const std::string& path, std::string& shape_file, const char* type) {
+  const JsonValue* inline_shape = reader.find(model, "shape");
+  const JsonValue* file = reader.find(model, "shape_file");
+  if ((inline_shape == nullptr) == (file == nullptr)) {
+    reader.fail(join_json_path(path, "shape"),
+                std::string("expected exactly one of \"shape\" (a ") + type +
+                    " in the shape format of dnurbs eval), \"shape_file\" and \"fit\"");
+  }
+  std::optional<Shape> shape;
+  // A marker source lets the shape parser's "<source>: <path>: ..." become one scene path
+  constexpr const char* kMarker = "\x01";
+  try {
+    if (inline_shape != nullptr) {
+      if (!inline_shape->is_object()) {
+        reader.fail(join_json_path(path, "shape"), std::string("expected a ") + type +
+                                                       " object, got " +
+                                                       describe_json_value(*inline_shape));
+      }
+      shape = parse_shape_json(inline_shape->dump(), kMarker);
+    } else {
+      shape_file = reader.string(*file, join_json_path(path, "shape_file"));
+      shape = read_shape_file(reader.resolve(shape_file));
+    }
+  } catch (const Error& error) {
+    std::string message = error.what();
+    const std::string prefix = std::string(kMarker) + ": ";
+    if (message.starts_with(prefix)) {
+      // "<marker>: <shape path>: <expected>" becomes "<path>.shape.<shape path>: <expected>"
+      const std::string rest = message.substr(prefix.size());
+      const auto colon = rest.find(": ");
+      if (colon != std::string::npos) {
+        reader.fail(join_json_path(path, "shape") + "." + rest.substr(0, colon),
+                    rest.substr(colon + 2));
+      }
+      reader.fail(join_json_path(path, "shape"), rest);
+    }
+    reader.fail(join_json_path(path, inline_shape != nullptr ? "shape" : "shape_file"), message);
+  }
+  if (!std::holds_alternative<ShapeType>(*shape)) {
+    reader.fail(join_json_path(path, inline_shape != nullptr ? "shape" : "shape_file"),
+                std::string("expected a ") + type + " for this model type");
+  }
+  return std::get<ShapeType>(*shape);
+}
+
+template NurbsCurve read_scene_shape<NurbsCurve>(const SceneReader&, const JsonValue&,
+                                                 const std::string&, std::string&, const char*);
+template NurbsSurface read_scene_shape<NurbsSurface>(const SceneReader&, const JsonValue&,
+                                                     const std::string&, std::string&,
+                                                     const char*);
+
+void write_scene_shape(const std::optional<Shape>& shape, const std::string& shape_file,
+                       const std::optional<SceneFit>& fit, JsonOut& model) {
+  if (fit) {
+    model["fit"] = fit_json(*fit, true);
+  } else if (!shape_file.empty()) {
+    model["shape_file"] = shape_file;
+  } else {
+    model["shape"] = JsonOut::parse(shape_to_json(shape.value()));
+  }
+}
+
+void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
+                          const std::string& path, DNurbsSettings& settings) {
+  if (const JsonValue* weights = reader.find(model, "weights")) {
+    settings.weight_mode =
+        reader.choice(*weights, join_json_path(path, "weights"), {"fixed", "free"}) == "free"
+            ? WeightMode::kFree
+            : WeightMode::kFixed;
+  }
+  reader.integer_key(model, path, "quadrature_points", settings.quadrature_points, 0, 32);
+  reader.number_key(model, path, "minimum_weight", settings.minimum_weight, 0.0, true);
+}
+
+void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
+  model["weights"] = settings.weight_mode == WeightMode::kFree ? "free" : "fixed";
+  model["quadrature_points"] = settings.quadrature_points;
+  model["minimum_weight"] = settings.minimum_weight;
+}
+
+}  // namespace dnurbs

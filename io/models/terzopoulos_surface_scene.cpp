@@ -1,0 +1,55 @@
+#include "io/models/terzopoulos_surface_scene.h"
+
+#include "io/scene_model_keys.h"
+
+namespace dnurbs {
+
+std::unique_ptr<SceneModelSpec> SceneTerzopoulosSurface::clone() const {
+  return std::make_unique<SceneTerzopoulosSurface>(*this);
+}
+
+void SceneTerzopoulosSurface::write(JsonOut& model) const {
+  model["grid"] = scene_grid_json(grid);
+  model["normal"] = settings.normal == NormalApproximation::kClassic ? "classic" : "christoffel";
+  model["delta"] = settings.delta;
+  model["material"] = {{"mass_density", material.mass_density},
+                       {"damping_density", material.damping_density},
+                       {"eta", matrix2_json(material.eta)},
+                       {"xi", matrix2_json(material.xi)}};
+}
+
+std::unique_ptr<Model> SceneTerzopoulosSurface::build() const {
+  return std::make_unique<TerzopoulosSurface>(grid.grid(), grid.rest_positions(), material,
+                                              settings);
+}
+
+std::unique_ptr<SceneModelSpec> read_terzopoulos_surface_scene(const SceneReader& reader,
+                                                               const JsonValue& model,
+                                                               const std::string& path) {
+  check_model_keys(reader, model, path, "terzopoulos_surface", {"grid", "normal", "delta"});
+  auto spec = std::make_unique<SceneTerzopoulosSurface>();
+  spec->grid = read_scene_grid(reader, model, path);
+  if (const JsonValue* normal = reader.find(model, "normal")) {
+    spec->settings.normal = reader.choice(*normal, join_json_path(path, "normal"),
+                                          {"classic", "christoffel"}) == "classic"
+                                ? NormalApproximation::kClassic
+                                : NormalApproximation::kChristoffel;
+  }
+  reader.number_key(model, path, "delta", spec->settings.delta, 0.0, true);
+  const JsonValue material =
+      model_material(reader, model, path, {"mass_density", "damping_density", "eta", "xi"});
+  const std::string material_path = join_json_path(path, "material");
+  reader.number_key(material, material_path, "mass_density", spec->material.mass_density, 0.0,
+                    true);
+  reader.number_key(material, material_path, "damping_density", spec->material.damping_density,
+                    0.0, false);
+  if (const JsonValue* eta = reader.find(material, "eta")) {
+    spec->material.eta = reader.matrix2(*eta, join_json_path(material_path, "eta"));
+  }
+  if (const JsonValue* xi = reader.find(material, "xi")) {
+    spec->material.xi = reader.matrix2(*xi, join_json_path(material_path, "xi"));
+  }
+  return spec;
+}
+
+}  // namespace dnurbs

@@ -1,0 +1,31 @@
+#pragma once
+// Scene type "terzopoulos_surface" (docs/scene-format.md): the grid-based Terzopoulos elastic
+// surface (dynamics/grid/terzopoulos_surface.h) on a flat grid.
+
+#include <memory>
+#include <string>
+
+#include "dynamics/grid/terzopoulos_surface.h"
+#include "io/models/grid_scene_keys.h"
+#include "io/scene_reader.h"
+#include "io/scene_spec.h"
+
+namespace dnurbs {
+
+struct SceneTerzopoulosSurface final : SceneModelSpec {
+  SceneGrid grid;
+  TerzopoulosMaterial material;
+  TerzopoulosSettings settings;
+
+  std::unique_ptr<SceneModelSpec> clone() const override;
+  std::string type() const override { return "terzopoulos_surface"; }
+  void write(JsonOut& model) const override;
+  std::unique_ptr<Model> build() const override;
+};
+
+/// Reads the keys of a "terzopoulos_surface" model.
+std::unique_ptr<SceneModelSpec> read_terzopoulos_surface_scene(const SceneReader& reader,
+                                                               const JsonValue& model,
+                                                               const std::string& path);
+
+}  // namespace dnurbs

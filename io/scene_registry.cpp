@@ -1,0 +1,47 @@
+#include "io/scene_registry.h"
+
+#include "io/scene_constraints.h"
+#include "io/scene_forces.h"
+
+namespace dnurbs {
+
+// The readers of io/scene_model_types.def, defined in io/models/.
+#define DNURBS_SCENE_MODEL_TYPE(type, reader, border, points, local_sculpting) \
+  std::unique_ptr<SceneModelSpec> reader(const SceneReader&, const JsonValue&, const std::string&);
+#include "io/scene_model_types.def"
+#undef DNURBS_SCENE_MODEL_TYPE
+
+const std::vector<SceneModelType>& scene_model_types() {
+  static const std::vector<SceneModelType> types = {
+#define DNURBS_SCENE_MODEL_TYPE(type, reader, border, points, local_sculpting) \
+  {#type, &(reader), border, points, local_sculpting},
+#include "io/scene_model_types.def"
+#undef DNURBS_SCENE_MODEL_TYPE
+  };
+  return types;
+}
+
+const std::vector<SceneForceType>& scene_force_types() {
+  static const std::vector<SceneForceType> types = {
+      {"point", &read_point_force},
+      {"spring", &read_spring_force},
+      {"control_point", &read_control_point_force},
+      {"gravity", &read_gravity},
+      {"pressure", &read_pressure},
+  };
+  return types;
+}
+
+const std::vector<SceneConstraintType>& scene_constraint_types() {
+  static const std::vector<SceneConstraintType> types = {
+      {"point_target", &read_point_target_constraint},
+      {"point_to_point", &read_point_to_point_constraint},
+      {"hinge", &read_hinge_constraint},
+      {"control_point", &read_control_point_constraint},
+      {"surface_normal", &read_surface_normal_constraint},
+      {"curve_on_surface", &read_curve_on_surface_constraint},
+  };
+  return types;
+}
+
+}  // namespace dnurbs
