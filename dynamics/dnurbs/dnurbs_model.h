@@ -117,6 +117,28 @@ class DNurbsModel : public Model {
               const DNurbsSettings& settings);
 
  private:
+  // Construction steps: checks, the material values at every quadrature point, the element
+  // connectivity and pattern, the initial coordinates and the constant (fixed-weight) matrices
+  // or the free-weight block pattern.
+  void validate(const Eigen::VectorXd& weights, const DNurbsSettings& settings) const;
+  void build_material_table(const MaterialFunction& mass_density,
+                            const MaterialFunction& damping_density,
+                            const std::array<MaterialFunction, kQuantityCount>& stiffness,
+                            const std::array<const char*, kQuantityCount>& stiffness_names);
+  void build_pattern();
+  void build_coordinates(const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights,
+                         const DNurbsSettings& settings);
+  // The quadrature loop of every integral (seed 001 eq 1.25): at each quadrature point of each
+  // element, the basis and the rational Jacobian of derivative order `order` (with the weight
+  // columns when `weight_columns`) at the control net, then
+  //   point(element, point, weight (quadrature weight times span lengths), material values,
+  //         basis, jacobian),
+  // and element_done(element) after the element's last point.
+  template <typename PointVisitor, typename ElementVisitor>
+  void for_each_quadrature_point(const ControlNet& net, int order, bool weight_columns,
+                                 PointVisitor&& point, ElementVisitor&& element_done) const;
+  // Zeroes a free-weight matrix in the block pattern (or empties it when unused).
+  void reset_block_matrix(SparseMatrix& matrix, bool used) const;
   // Basis at an arbitrary parameter / at quadrature point `point` of element `element`.
   void basis_at(const Eigen::Vector2d& u, PointBasis& basis) const;
   void basis_at_quadrature(int element, int point, PointBasis& basis) const;
@@ -161,5 +183,25 @@ class DNurbsModel : public Model {
   std::vector<int> weight_diagonal_;
   double weight_inertia_ = 0.0;
 };
+
+template <typename PointVisitor, typename ElementVisitor>
+void DNurbsModel::for_each_quadrature_point(const ControlNet& net, int order, bool weight_columns,
+                                            PointVisitor&& point,
+                                            ElementVisitor&& element_done) const {
+  PointBasis basis;
+  RationalJacobian jacobian;
+  const int per_element = points_per_element();
+  for (int e = 0; e < element_count(); ++e) {
+    for (int g = 0; g < per_element; ++g) {
+      basis_at_quadrature(e, g, basis);
+      rational_jacobian(basis, order, net, weight_columns, jacobian);
+      const double* material =
+          &material_[static_cast<size_t>((e * per_element + g) * kMaterialStride)];
+      point(e, g, quadrature_weight(e, g), material, static_cast<const PointBasis&>(basis),
+            static_cast<const RationalJacobian&>(jacobian));
+    }
+    element_done(e);
+  }
+}
 
 }  // namespace dnurbs
