@@ -11,14 +11,38 @@ namespace dnurbs {
 #include "io/scene_model_types.def"
 #undef DNURBS_SCENE_MODEL_TYPE
 
-const std::vector<SceneModelType>& scene_model_types() {
-  static const std::vector<SceneModelType> types = {
+namespace {
+
+std::vector<SceneModelType>& model_types() {
+  static std::vector<SceneModelType> types = {
 #define DNURBS_SCENE_MODEL_TYPE(type, reader, border, points, local_sculpting) \
   {#type, &(reader), border, points, local_sculpting},
 #include "io/scene_model_types.def"
 #undef DNURBS_SCENE_MODEL_TYPE
   };
   return types;
+}
+
+}  // namespace
+
+const std::vector<SceneModelType>& scene_model_types() { return model_types(); }
+
+void register_scene_model_type(const SceneModelType& type) {
+  const std::string name = type.name != nullptr ? type.name : "";
+  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") !=
+                          std::string::npos) {
+    throw make_error("scene model type name \"", name,
+                     "\" is not a non-empty name of lower-case letters, digits and _");
+  }
+  if (type.read == nullptr) {
+    throw make_error("scene model type \"", name, "\" has no reader");
+  }
+  for (const SceneModelType& existing : model_types()) {
+    if (name == existing.name) {
+      throw make_error("scene model type \"", name, "\" is already registered");
+    }
+  }
+  model_types().push_back(type);
 }
 
 const std::vector<SceneForceType>& scene_force_types() {

@@ -24,8 +24,14 @@ struct SceneModelType {
   bool points;           ///< boundary.fixed_points is allowed (Model::fix_point)
   bool local_sculpting;  ///< boundary.local_sculpting_margin is allowed (Model::freeze_outside)
 };
-/// Every model type, in the order of io/scene_model_types.def.
+/// Every model type: those of io/scene_model_types.def in its order, then the registered ones.
 const std::vector<SceneModelType>& scene_model_types();
+/// Adds a model type from outside the library (an application's own model): its scenes parse
+/// and run like the built-in ones. Call it before parsing scenes (not thread-safe against
+/// concurrent parsing); `type.name` must outlive every scene (a string literal). Throws Error
+/// if the name is empty, taken or not [a-z0-9_]+, or the
+/// reader is null.
+void register_scene_model_type(const SceneModelType& type);
 
 /// Reads a force's or a constraint's keys; model references resolve through `names`.
 using SceneForceReader = std::unique_ptr<SceneForceSpec> (*)(const SceneReader& reader,

@@ -1,5 +1,8 @@
 // Every constraint's C_q, Cdot and sigma against finite differences of C along the coordinates
 // and along the motion q(t) = q + t qd (coordinates are a vector space for D-NURBS models).
+
+#include "constraints/constraint.h"
+
 #include <random>
 
 #include <gtest/gtest.h>

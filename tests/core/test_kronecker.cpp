@@ -1,0 +1,50 @@
+// The Kronecker layout: S (x) I_b entry by entry against the dense product, and the fixed nodes
+// of a list of fixed coordinates.
+
+#include "core/kronecker.h"
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+#include "core/error.h"
+
+namespace dnurbs {
+namespace {
+
+TEST(KroneckerIdentity, EqualsTheDenseKroneckerProduct) {
+  SparseMatrix scalar(4, 4);
+  scalar.insert(0, 0) = 2.0;
+  scalar.insert(1, 0) = -1.5;
+  scalar.insert(0, 1) = -1.5;
+  scalar.insert(3, 2) = 0.25;
+  scalar.insert(2, 3) = 0.25;
+  scalar.makeCompressed();
+  for (const int b : {1, 3, 4}) {
+    const SparseMatrix expanded = kronecker_identity(scalar, b);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(scalar);
+    Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(4 * b, 4 * b);
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        expected.block(i * b, j * b, b, b) = dense(i, j) * Eigen::MatrixXd::Identity(b, b);
+      }
+    }
+    // Entries are copied, so the product is exact
+    EXPECT_EQ((Eigen::MatrixXd(expanded) - expected).cwiseAbs().maxCoeff(), 0.0) << b;
+    EXPECT_EQ(expanded.nonZeros(), b * scalar.nonZeros()) << b;
+    EXPECT_TRUE(expanded.isCompressed());
+  }
+  EXPECT_THROW(kronecker_identity(scalar, 0), Error);
+}
+
+TEST(FixedNodes, WholeNodesAreFoundAndPartialOnesRefused) {
+  EXPECT_EQ(fixed_nodes({}, 3), std::vector<int>());
+  EXPECT_EQ(fixed_nodes({3, 4, 5, 9, 10, 11}, 3), (std::vector<int>{1, 3}));
+  EXPECT_FALSE(fixed_nodes({3, 4}, 3).has_value());         // node 1 partly fixed
+  EXPECT_FALSE(fixed_nodes({4, 5, 6}, 3).has_value());      // straddles nodes 1 and 2
+  EXPECT_FALSE(fixed_nodes({0, 1, 2, 4}, 3).has_value());   // a stray coordinate
+  EXPECT_EQ(fixed_nodes({0, 1, 2, 3}, 4), std::vector<int>{0});
+  EXPECT_THROW(fixed_nodes({0}, 0), Error);
+}
+
+}  // namespace
+}  // namespace dnurbs
