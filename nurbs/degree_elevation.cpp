@@ -4,10 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/LU>
-
-#include "nurbs/basis_functions.h"
 #include "core/error.h"
+#include "nurbs/periodic_window.h"
 
 namespace dnurbs {
 namespace {
@@ -200,48 +198,34 @@ ElevatedRows elevate_open_rows(const KnotVector& knots, const Eigen::MatrixXd& p
   return {KnotVector(ph, std::move(uh)), std::move(q)};
 }
 
-// Periodic curves: the elevated curve lies in the periodic spline space of degree p + t whose
-// knots are the old distinct knots with multiplicity + t; its control points solve the
-// collocation system at the Greville abscissae of that basis.
-ElevatedRows elevate_periodic_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {
-  const int p = knots.degree();
-  const int n = knots.control_point_count();
-  std::vector<double> period;
-  for (int i = p; i < p + n; ++i) {
-    if (i > p && knots[i] == knots[i - 1]) {
-      continue;
+// Periodic curves: the period's knots with every distinct knot raised by t (the seam by t copies
+// at the start of the list, so that its multiplicity across the wrap grows by t).
+KnotVector elevated_periodic_knots(const KnotVector& knots, int t) {
+  const std::vector<double> period = knots.period_knots();
+  std::vector<double> elevated;
+  elevated.reserve(period.size() * static_cast<size_t>(t + 1));
+  for (size_t i = 0; i + 1 < period.size(); ++i) {
+    if (i == 0 || period[i] != period[i - 1]) {
+      elevated.insert(elevated.end(), static_cast<size_t>(t), period[i]);
     }
-    const int multiplicity = knots.multiplicity(knots[i]);
-    period.insert(period.end(), static_cast<size_t>(multiplicity) + static_cast<size_t>(t),
-                  knots[i]);
+    elevated.push_back(period[i]);
   }
-  period.push_back(knots.domain_end());
-  KnotVector elevated = KnotVector::periodic(p + t, period);
-  const int ph = p + t;
-  const int count = elevated.control_point_count();
+  elevated.push_back(period.back());
+  return KnotVector::periodic(knots.degree() + t, elevated);
+}
 
-  Eigen::MatrixXd collocation = Eigen::MatrixXd::Zero(count, count);
-  Eigen::MatrixXd values = Eigen::MatrixXd::Zero(count, points.cols());
-  BasisValues basis;
-  for (int j = 0; j < count; ++j) {
-    double greville = 0.0;
-    for (int i = 1; i <= ph; ++i) {
-      greville += elevated[j + i];
-    }
-    const double tau = elevated.to_domain(greville / ph);
-    const int new_span = elevated.find_span(tau);
-    basis_functions(elevated, new_span, tau, basis);
-    for (int c = 0; c <= ph; ++c) {
-      collocation(j, elevated.control_point_index(new_span, c)) += basis[c];
-    }
-    const int old_span = knots.find_span(tau);
-    basis_functions(knots, old_span, tau, basis);
-    for (int c = 0; c <= p; ++c) {
-      values.row(j) += basis[c] * points.row(knots.control_point_index(old_span, c));
-    }
-  }
-  Eigen::MatrixXd new_points = collocation.partialPivLu().solve(values);
-  return {std::move(elevated), std::move(new_points)};
+// Periodic curves: three periods [t_p - T, t_{p+n} + T] of the bi-infinite spline as an open
+// curve, clamped at both ends and elevated by A5.9; the middle of the result is the elevated
+// periodic spline, whose control points are read off by matching knots (wrap_periodic).
+ElevatedRows elevate_periodic_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {
+  const int n = knots.control_point_count();
+  const KnotsAndRows window =
+      clamp_window(unwrap_periodic(knots, points, -n, 3 * n + knots.degree()));
+  ElevatedRows elevated = elevate_open_rows(window.knots, window.rows, t);
+  KnotVector target = elevated_periodic_knots(knots, t);
+  Eigen::MatrixXd rows =
+      wrap_periodic({std::move(elevated.knots), std::move(elevated.rows)}, target);
+  return {std::move(target), std::move(rows)};
 }
 
 ElevatedRows elevate_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {

@@ -12,9 +12,10 @@ namespace dnurbs {
 /// distinct knot's multiplicity grows by degree_increase (so the continuity at it is kept).
 ///
 /// Open curves need a clamped knot vector (end knots repeated p + 1 times) and use P&T A5.9.
-/// Periodic curves give a periodic curve of degree p + degree_increase over the same period; its
-/// control points are found by collocation at the Greville abscissae of the new basis (exact up
-/// to round-off, since the elevated curve lies in the new spline space).
+/// Periodic curves give a periodic curve of degree p + degree_increase over the same period (the
+/// seam knot, like every other, gains degree_increase copies, put at the start of the period
+/// list): three periods of the curve are unwrapped into a clamped open curve, elevated by A5.9,
+/// and the control points of the periodic result read off its middle (periodic_window.h).
 /// degree_increase = 0 returns the curve unchanged. Throws Error naming the value if
 /// degree_increase < 0, p + degree_increase > kMaxDegree, or an open knot vector is not clamped.
 NurbsCurve elevate_degree(const NurbsCurve& curve, int degree_increase);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "nurbs/periodic_window.h"
 
 namespace dnurbs {
 namespace {
@@ -17,15 +18,18 @@ struct RemovedRows {
   int removed_count = 0;
 };
 
-void check_removal(const KnotVector& knots, double u, int times, double tolerance) {
-  if (knots.is_periodic()) {
-    throw make_error("knot removal supports open shapes; the knot vector with knot ", u,
-                     " is periodic");
-  }
+// Checks a removal request; returns u (wrapped into the period for a periodic vector, the seam
+// as t_p).
+double check_removal(const KnotVector& knots, double u, int times, double tolerance) {
   if (!std::isfinite(tolerance) || tolerance < 0.0) {
     throw make_error("knot removal tolerance ", tolerance, " must be finite and >= 0");
   }
-  if (!(u > knots.domain_start() && u < knots.domain_end())) {
+  if (!std::isfinite(u)) {
+    throw make_error("knot ", u, " to remove is not finite");
+  }
+  if (knots.is_periodic()) {
+    u = knots.wrap_to_period(u);
+  } else if (!(u > knots.domain_start() && u < knots.domain_end())) {
     throw make_error("knot ", u, " to remove is not inside the domain (", knots.domain_start(),
                      ", ", knots.domain_end(), ")");
   }
@@ -37,6 +41,13 @@ void check_removal(const KnotVector& knots, double u, int times, double toleranc
     throw make_error("knot ", u, " has multiplicity ", s, " and cannot be removed ", times,
                      " times");
   }
+  const int n = knots.control_point_count();
+  if (knots.is_periodic() && n - times < knots.degree() + 1) {
+    throw make_error("removing knot ", u, " ", times, " times would leave ", n - times,
+                     " control points, fewer than the ", knots.degree() + 1,
+                     " a periodic basis of degree ", knots.degree(), " needs");
+  }
+  return u;
 }
 
 // P&T eq. 5.30: a homogeneous bound d w_min / (1 + |P|_max) keeps the curve within d.
@@ -157,37 +168,114 @@ RemovedRows remove_knot_rows(const KnotVector& knots, Eigen::MatrixXd points, do
   return {std::move(t), std::move(points), removed};
 }
 
+// The period knots with one copy of u removed. A seam copy goes from the end of the list (or
+// the start) so that the period keeps its start; the seam's only copy moves the period start to
+// the next knot, t_{p+1} (the curve is the same function of the parameter; only the domain
+// shifts).
+std::vector<double> period_without(const KnotVector& knots, double u) {
+  std::vector<double> period = knots.period_knots();
+  const size_t n = period.size() - 1;
+  const double start = period.front();
+  const double end = period.back();
+  if (u != start) {
+    period.erase(std::find(period.begin(), period.end(), u));
+  } else if (period[n - 1] == end) {
+    period.erase(period.begin() + static_cast<std::ptrdiff_t>(n - 1));
+  } else if (period[1] == start) {
+    period.erase(period.begin() + 1);
+  } else {
+    std::vector<double> rotated(period.begin() + 1, period.end() - 1);
+    rotated.push_back(period[1] + (end - start));
+    period = std::move(rotated);
+  }
+  return period;
+}
+
+/// Knot vector and control rows after removal, with the number of removals done.
+struct KnotsAndRemovedRows {
+  KnotVector knots;
+  Eigen::MatrixXd rows;
+  int removed_count = 0;
+};
+
+// Periodic shapes: each removal step unwraps five periods [t_p - 2T, t_{p+n} + 2T] into an open
+// curve, removes u once at every copy inside it by A5.8 (each within the tolerance), and reads
+// the control points of the periodic result off the middle (wrap_periodic).
+KnotsAndRemovedRows remove_periodic_rows(KnotVector knots, Eigen::MatrixXd rows, double u,
+                                         int times, double tolerance, int block_size) {
+  const int p = knots.degree();
+  int removed = 0;
+  for (; removed < times; ++removed) {
+    const int n = knots.control_point_count();
+    KnotsAndRows window = unwrap_periodic(knots, rows, -2 * n, 5 * n + p);
+    int index = p;  // u's first copy in the stored period t_p..t_{p+n-1}
+    while (knots[index] != u) {
+      ++index;
+    }
+    bool removable = true;
+    for (int period = -2; period <= 2 && removable; ++period) {
+      const double copy = knots.extended_knot(index + period * n);
+      if (!(copy > window.knots.domain_start() && copy < window.knots.domain_end())) {
+        continue;
+      }
+      RemovedRows step =
+          remove_knot_rows(window.knots, window.rows, copy, 1, tolerance, block_size);
+      removable = step.removed_count == 1;
+      if (removable) {
+        window = {KnotVector(p, std::move(step.knots)), std::move(step.rows)};
+      }
+    }
+    if (!removable) {
+      break;
+    }
+    KnotVector removed_knots = KnotVector::periodic(p, period_without(knots, u));
+    rows = wrap_periodic(window, removed_knots);
+    knots = std::move(removed_knots);
+  }
+  return {std::move(knots), std::move(rows), removed};
+}
+
+// A5.8 on the control rows of an open or periodic knot vector.
+KnotsAndRemovedRows remove_knot_any(const KnotVector& knots, const ControlRows& rows, double u,
+                                    int times, double bound) {
+  if (knots.is_periodic()) {
+    return remove_periodic_rows(knots, rows.rows, u, times, bound, rows.block_size);
+  }
+  RemovedRows result = remove_knot_rows(knots, rows.rows, u, times, bound, rows.block_size);
+  return {KnotVector(knots.degree(), std::move(result.knots)), std::move(result.rows),
+          result.removed_count};
+}
+
 }  // namespace
 
 CurveKnotRemoval remove_knot(const NurbsCurve& curve, double u, int times, double tolerance) {
-  check_removal(curve.knots(), u, times, tolerance);
+  u = check_removal(curve.knots(), u, times, tolerance);
   ControlRows rows = control_rows(curve);
   const double bound = homogeneous_tolerance(tolerance, curve.control_points(), curve.weights(),
                                              curve.is_rational());
-  RemovedRows result = remove_knot_rows(curve.knots(), rows.rows, u, times, bound, rows.block_size);
+  KnotsAndRemovedRows result = remove_knot_any(curve.knots(), rows, u, times, bound);
   if (result.removed_count == 0) {
     return {curve, 0, false};
   }
   rows.rows = std::move(result.rows);
-  return {curve_from_control_rows(KnotVector(curve.degree(), std::move(result.knots)), rows),
-          result.removed_count, result.removed_count == times};
+  return {curve_from_control_rows(std::move(result.knots), rows), result.removed_count,
+          result.removed_count == times};
 }
 
 SurfaceKnotRemoval remove_knot(const NurbsSurface& surface, SurfaceDirection direction, double u,
                                int times, double tolerance) {
   const KnotVector& knots =
       direction == SurfaceDirection::kU ? surface.knots_u() : surface.knots_v();
-  check_removal(knots, u, times, tolerance);
+  u = check_removal(knots, u, times, tolerance);
   ControlRows rows = control_rows(surface, direction);
   const double bound = homogeneous_tolerance(tolerance, surface.control_points(), surface.weights(),
                                              surface.is_rational());
-  RemovedRows result = remove_knot_rows(knots, rows.rows, u, times, bound, rows.block_size);
+  KnotsAndRemovedRows result = remove_knot_any(knots, rows, u, times, bound);
   if (result.removed_count == 0) {
     return {surface, 0, false};
   }
   rows.rows = std::move(result.rows);
-  return {surface_from_control_rows(surface, direction,
-                                    KnotVector(knots.degree(), std::move(result.knots)), rows),
+  return {surface_from_control_rows(surface, direction, std::move(result.knots), rows),
           result.removed_count, result.removed_count == times};
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Tolerance-bounded knot removal of open NURBS curves and surfaces (Piegl & Tiller, The NURBS
-// Book, A5.8 and eq. 5.30), done on homogeneous control points (w P, w).
+// Tolerance-bounded knot removal of open and periodic NURBS curves and surfaces (Piegl & Tiller,
+// The NURBS Book, A5.8 and eq. 5.30), done on homogeneous control points (w P, w).
 
 #include "nurbs/knot_insertion.h"
 #include "nurbs/nurbs_curve.h"
@@ -33,16 +33,23 @@ struct SurfaceKnotRemoval {
 /// removing a knot j times moves the curve by at most j * tolerance. Removal stops at the first
 /// step that fails; the removals before it are kept.
 ///
-/// Throws Error naming the value if the curve is periodic (removal supports open shapes), u is
-/// not an interior knot of the curve, times is outside 1..multiplicity of u, or tolerance is
-/// negative or not finite.
+/// Periodic curves: u wraps into the period (KnotVector::wrap_to_period, so the seam given as
+/// the period end is the knot t_p) and is removed in every period: each step unwraps five periods
+/// into an open curve, applies A5.8 at every copy of u, and reads the periodic control points off
+/// the middle (periodic_window.h). A copy of the seam knot is taken from the end of the period
+/// list (else from its start), so the period keeps its start; removing the seam's only copy
+/// moves the period start to the next knot t_{p+1} (the curve is the same function of the
+/// parameter, its domain is shifted).
+///
+/// Throws Error naming the value if u is not a knot of the curve (open curves: not an interior
+/// knot), times is outside 1..multiplicity of u, a periodic curve would keep fewer than p + 1
+/// control points, or tolerance is negative or not finite.
 CurveKnotRemoval remove_knot(const NurbsCurve& curve, double u, int times, double tolerance);
 
 /// Removes the interior knot u along `direction` from every row (kU: every curve of fixed v
 /// index; kV: every curve of fixed u index) of the control net. Each removal step is done only
 /// if every row succeeds within the tolerance (w_min and |P|_max taken over the whole net for a
-/// rational surface). Throws Error like the curve version (a surface periodic along `direction`
-/// is rejected).
+/// rational surface). Periodic directions as for curves; throws Error like the curve version.
 SurfaceKnotRemoval remove_knot(const NurbsSurface& surface, SurfaceDirection direction, double u,
                                int times, double tolerance);
 

@@ -36,24 +36,75 @@ KnotVector::KnotVector(PeriodicTag, int degree, const std::vector<double>& perio
       throw make_error("period knot ", i, " is not finite (", period_knots[i], ")");
     }
   }
-  const double period = period_knots.back() - period_knots.front();
-  if (!(period > 0.0)) {
-    throw make_error("periodic knots must span a positive period, got [", period_knots.front(),
-                     ", ", period_knots.back(), "]");
+  const double start = period_knots.front();
+  const double end = period_knots.back();
+  if (!(end - start > 0.0)) {
+    throw make_error("periodic knots must span a positive period, got [", start, ", ", end, "]");
+  }
+  // Snap knots within the seam tolerance onto the period start or end: a list whose wrapped
+  // copies were computed as t_{i+n} - T carries round-off there that is not a real knot.
+  const double tolerance =
+      kPeriodicSeamTolerance * std::max({std::abs(start), std::abs(end), end - start});
+  std::vector<double> period = period_knots;
+  for (int i = 1; i < n; ++i) {
+    double& knot = period[static_cast<size_t>(i)];
+    if (std::abs(knot - start) <= tolerance) {
+      knot = start;
+    } else if (std::abs(knot - end) <= tolerance) {
+      knot = end;
+    }
+    if (knot < period[static_cast<size_t>(i - 1)]) {
+      throw make_error("period knots decrease at index ", i, ": ",
+                       period[static_cast<size_t>(i - 1)], " > ", knot);
+    }
+  }
+  if (period[static_cast<size_t>(n - 1)] > end) {
+    throw make_error("period knots decrease at index ", n, ": ", period[static_cast<size_t>(n - 1)],
+                     " > ", end);
   }
   control_point_count_ = n;
-  // Extend one period by p knots on each side with the same spacing: t_{i+n} = t_i + T.
   knots_.resize(static_cast<size_t>(n + 2 * degree + 1));
   for (int i = 0; i <= n; ++i) {
-    knots_[static_cast<size_t>(degree + i)] = period_knots[static_cast<size_t>(i)];
+    knots_[static_cast<size_t>(degree + i)] = period[static_cast<size_t>(i)];
   }
-  for (int i = degree - 1; i >= 0; --i) {
-    knots_[static_cast<size_t>(i)] = knots_[static_cast<size_t>(i + n)] - period;
-  }
-  for (int i = degree + n + 1; i < n + 2 * degree + 1; ++i) {
-    knots_[static_cast<size_t>(i)] = knots_[static_cast<size_t>(i - n)] + period;
+  // Extend one period by p knots on each side with the same spacing, t_{i+n} = t_i + T, the seam
+  // copies exactly t_p - T and t_{p+n} (shifted_period_knot).
+  for (int i = 0; i < degree; ++i) {
+    knots_[static_cast<size_t>(i)] =
+        shifted_period_knot(period[static_cast<size_t>(i + n - degree)], -1);
+    knots_[static_cast<size_t>(degree + n + 1 + i)] =
+        shifted_period_knot(period[static_cast<size_t>(i + 1)], 1);
   }
   validate();
+}
+
+double KnotVector::shifted_period_knot(double x, int periods) const {
+  const double start = knots_[static_cast<size_t>(degree_)];
+  const double end = knots_[static_cast<size_t>(degree_ + control_point_count_)];
+  const double period = end - start;
+  // The copies of the seam: period k starts at t_p + k T (exactly t_{p+n} for k = 1).
+  const auto seam = [&](int k) { return k == 0 ? start : k == 1 ? end : start + k * period; };
+  if (x == start) {
+    return seam(periods);
+  }
+  if (x == end) {
+    return seam(periods + 1);
+  }
+  return x + periods * period;
+}
+
+double KnotVector::extended_knot(int i) const {
+  if (!periodic_) {
+    if (i < 0 || i >= size()) {
+      throw make_error("knot index ", i, " is outside 0..", size() - 1);
+    }
+    return knots_[static_cast<size_t>(i)];
+  }
+  const int n = control_point_count_;
+  const int offset = i - degree_;
+  const int periods = offset >= 0 ? offset / n : -((-offset + n - 1) / n);
+  const int m = offset - periods * n;
+  return shifted_period_knot(knots_[static_cast<size_t>(degree_ + m)], periods);
 }
 
 void KnotVector::validate() const {
@@ -188,6 +239,18 @@ double KnotVector::to_domain(double u) const {
     throw make_error("parameter ", u, " is outside the domain [", start, ", ", end, "]");
   }
   return std::clamp(u, start, end);
+}
+
+double KnotVector::wrap_to_period(double u) const {
+  const double wrapped = to_domain(u);
+  if (!periodic_) {
+    return wrapped;
+  }
+  const double start = domain_start();
+  const double end = domain_end();
+  const double tolerance =
+      kPeriodicSeamTolerance * std::max({std::abs(start), std::abs(end), end - start});
+  return wrapped - start <= tolerance || end - wrapped <= tolerance ? start : wrapped;
 }
 
 int KnotVector::find_span(double u) const {

@@ -174,9 +174,14 @@ TEST(KnotRemoval, InvalidInputThrowsErrorNamingTheValue) {
   EXPECT_THAT(
       error_message([&] { remove_knot(curve, 0.4, 1, std::numeric_limits<double>::quiet_NaN()); }),
       HasSubstr("nan"));
+  // Periodic curves: u must be a knot (after wrapping), and p + 1 control points must remain.
   const NurbsCurve periodic(KnotVector::periodic_uniform(3, 6), Eigen::MatrixX3d::Random(6, 3));
-  EXPECT_THAT(error_message([&] { remove_knot(periodic, 0.5, 1, 1e-6); }),
-              HasSubstr("supports open shapes"));
+  EXPECT_THAT(error_message([&] { remove_knot(periodic, 0.55, 1, 1e-6); }), HasSubstr("knot 0.55"));
+  EXPECT_THAT(error_message([&] { remove_knot(periodic, 1.5, 2, 1e-6); }),
+              HasSubstr("knot 0.5 has multiplicity 1"));
+  const NurbsCurve smallest(KnotVector::periodic_uniform(3, 4), Eigen::MatrixX3d::Random(4, 3));
+  EXPECT_THAT(error_message([&] { remove_knot(smallest, 0.5, 1, 1e-6); }),
+              HasSubstr("would leave 3 control points"));
 }
 
 TEST(SurfaceKnotRemoval, UndoesInsertionInUAndV) {
