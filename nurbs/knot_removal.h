@@ -1,6 +1,6 @@
 #pragma once
 // Tolerance-bounded knot removal of open and periodic NURBS curves and surfaces (Piegl & Tiller,
-// The NURBS Book, A5.8 and eq. 5.30), done on homogeneous control points (w P, w).
+// The NURBS Book, section 5.4 and eq. 5.30), done on homogeneous control points (w P, w).
 
 #include "nurbs/knot_insertion.h"
 #include "nurbs/nurbs_curve.h"
@@ -26,16 +26,21 @@ struct SurfaceKnotRemoval {
   bool succeeded = false;
 };
 
-/// Piegl & Tiller A5.8: removes the interior knot u up to `times` times, each removal only if
-/// the curve moves by at most `tolerance` (a distance in model units). For a rational curve the
-/// homogeneous control points are compared against tolerance * w_min / (1 + |P|_max) (P&T
-/// eq. 5.30), which bounds the distance the same way. The bound holds for every removal step, so
-/// removing a knot j times moves the curve by at most j * tolerance. Removal stops at the first
-/// step that fails; the removals before it are kept.
+/// Removes the interior knot u up to `times` times, each removal only if the curve moves by at
+/// most `tolerance` (a distance in model units). One removal undoes Boehm's insertion (Piegl &
+/// Tiller eq. 5.15, the equations A5.8 solves): its p - s + 1 equations for the p - s new
+/// points are solved in the least-squares sense by Householder QR, which stays accurate when
+/// knots nearly coincide (A5.8's recursion divides by alpha and 1 - alpha there), and the
+/// removal is done if every old control point is reproduced within the tolerance, which bounds
+/// the curve's motion by it (P&T eq. 5.29). For a rational curve the homogeneous points are
+/// compared against tolerance * w_min / (1 + |P|_max) (P&T eq. 5.30), which bounds the distance
+/// the same way. The bound holds for every removal step, so removing a knot j times moves the
+/// curve by at most j * tolerance. Removal stops at the first step that fails; the removals
+/// before it are kept.
 ///
 /// Periodic curves: u wraps into the period (KnotVector::wrap_to_period, so the seam given as
 /// the period end is the knot t_p) and is removed in every period: each step unwraps five periods
-/// into an open curve, applies A5.8 at every copy of u, and reads the periodic control points off
+/// into an open curve, removes u at every copy of it, and reads the periodic control points off
 /// the middle (periodic_window.h). A copy of the seam knot is taken from the end of the period
 /// list (else from its start), so the period keeps its start; removing the seam's only copy
 /// moves the period start to the next knot t_{p+1} (the curve is the same function of the
