@@ -1,0 +1,72 @@
+#pragma once
+// The nearest point of a NURBS surface to a query point, found with a guarantee. The minimum of
+// the distance over the closed domain lies on a boundary curve (or a corner, an end of one), on
+// a C^0 crease curve (a knot of multiplicity >= degree), or at an interior stationary point of
+// some Bezier patch. Boundary and crease curves are searched by CurveProjector; patches whose
+// control points' bounding box is farther than the best distance so far are skipped, and in the
+// others every stationary point is isolated by subdivision with exact exclusion and uniqueness
+// tests and found by Newton's method (ProjectionPatch).
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nurbs/curve_projector.h"
+#include "nurbs/nurbs_surface.h"
+#include "nurbs/projection_patch.h"
+
+namespace dnurbs {
+
+struct SurfaceProjection {
+  Eigen::Vector2d parameter = Eigen::Vector2d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double distance = 0.0;
+};
+
+/// A surface prepared for many closest-point queries: its Bezier patches (one per pair of
+/// non-empty spans) with their stationarity nets, and a CurveProjector for every boundary curve
+/// of an open direction and every C^0 crease. Built once (O(#patches p^2 q^2)); immutable
+/// afterwards, so one projector may serve queries from several threads. It keeps its own copy of
+/// the surface.
+class SurfaceProjector {
+ public:
+  explicit SurfaceProjector(NurbsSurface surface);
+
+  const NurbsSurface& surface() const { return surface_; }
+  /// Diagonal of the bounding box of the control points.
+  double scale() const { return scale_; }
+
+  /// The globally nearest surface point to `point` (finite, else Error). Ties (distances
+  /// within kProjectionTieTolerance) go to the smallest (u, v), compared lexicographically;
+  /// periodic directions report parameters in [domain_start, domain_end). `point` and
+  /// `distance` are those of surface().point(u, v).
+  SurfaceProjection closest_point(const Eigen::Vector3d& point) const;
+
+  /// Point inversion: the parameters of a point on the surface, to round-off. Throws Error
+  /// naming the distance if `point` is farther than `tolerance` from the surface.
+  Eigen::Vector2d invert(const Eigen::Vector3d& point, double tolerance) const;
+
+ private:
+  /// An iso-parameter curve: u = value (a curve in v) or v = value (a curve in u).
+  struct Edge {
+    CurveProjector projector;
+    bool fixed_u = true;
+    double value = 0.0;
+  };
+  struct Best {
+    double distance = 0.0;
+    Eigen::Vector2d parameter = Eigen::Vector2d::Zero();
+    bool found = false;
+  };
+
+  void add_edges(bool fixed_u, const Eigen::MatrixXd& homogeneous);
+  Eigen::Vector2d to_parameter(const ProjectionPatch& patch, double s, double t) const;
+  void consider(double distance, const Eigen::Vector2d& parameter, Best& best) const;
+
+  NurbsSurface surface_;
+  double scale_ = 0.0;
+  std::vector<ProjectionPatch> patches_;
+  std::vector<Edge> edges_;
+};
+
+}  // namespace dnurbs
