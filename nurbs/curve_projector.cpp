@@ -56,6 +56,12 @@ void CurveProjector::build_segment(int span, const Eigen::MatrixXd& homogeneous_
   segment.start = knots[span];
   segment.end = knots[span + 1];
   segment.homogeneous = bezier_segment(knots, homogeneous_rows, span);
+  const auto corner = [&](double knot) {
+    const bool domain_end = knot == knots.domain_start() || knot == knots.domain_end();
+    return (domain_end && !knots.is_periodic()) || knots.multiplicity(knot) >= p;
+  };
+  segment.start_is_corner = corner(segment.start);
+  segment.end_is_corner = corner(segment.end);
   const auto& h = segment.homogeneous;
   segment.box_min = segment.box_max = h.row(0).head<3>().transpose() / h(0, 3);
   for (int i = 1; i <= p; ++i) {
@@ -130,22 +136,13 @@ CurveProjector::SegmentPoint CurveProjector::evaluate(const Segment& segment, do
 }
 
 void CurveProjector::consider(const Segment& segment, double t, const Eigen::Vector3d& point,
-                              const Eigen::Vector3d& query, Best& best) const {
-  const double distance = (point - query).norm();
+                              const Eigen::Vector3d& query, bool exact, Best& best) const {
   double parameter = t >= 1.0 ? segment.end : segment.start + t * (segment.end - segment.start);
   const KnotVector& knots = curve_.knots();
   if (knots.is_periodic() && parameter >= knots.domain_end()) {
     parameter = knots.domain_start();  // the seam is reported as the period start
   }
-  // Before the first candidate, best.distance is the caller's bound (possibly infinite).
-  const double tie = kProjectionTieTolerance * best.distance + 1e-15 * scale_;
-  const bool better = !best.found
-                          ? distance <= best.distance + tie
-                          : distance < best.distance - tie ||
-                                (distance <= best.distance + tie && parameter < best.parameter);
-  if (better) {
-    best = {distance, parameter, true};
-  }
+  best.offer((point - query).norm(), parameter, exact);
 }
 
 double CurveProjector::solve_bracketed(const Segment& segment, const Eigen::Vector3d& query,
@@ -195,8 +192,9 @@ void CurveProjector::isolate(const Segment& segment, const Eigen::Vector3d& quer
       ++first;
     }
     if (coefficients[first] < 0.0 || depth >= kMaxDepth) {
+      // At the depth limit (an unresolved double root) the result is only approximate.
       const double t = solve_bracketed(segment, query, low, high);
-      consider(segment, t, evaluate(segment, t).point, query, best);
+      consider(segment, t, evaluate(segment, t).point, query, depth < kMaxDepth, best);
     }
     return;
   }
@@ -212,14 +210,27 @@ void CurveProjector::search_segment(const Segment& segment, const Eigen::Vector3
                                     Best& best) const {
   const int p = curve_.degree();
   const auto& h = segment.homogeneous;
-  consider(segment, 0.0, h.row(0).head<3>().transpose() / h(0, 3), query, best);
-  consider(segment, 1.0, h.row(p).head<3>().transpose() / h(p, 3), query, best);
   std::array<double, kMaxBernsteinDegree + 1> coefficients{};
   for (int k = 0; k <= condition_degree_; ++k) {
     coefficients[static_cast<size_t>(k)] =
         segment.e[static_cast<size_t>(k)] - query.dot(segment.f[static_cast<size_t>(k)]);
   }
   const double noise = kNoise * (segment.e_magnitude + query.norm() * segment.f_magnitude);
+  // The ends are candidates where the minimum may sit unstationary (curve ends, C^0 knots) or
+  // where they are stationary to round-off (g = c_0 or c_last vanishes); else they only bound.
+  const Eigen::Vector3d start = h.row(0).head<3>().transpose() / h(0, 3);
+  const Eigen::Vector3d end = h.row(p).head<3>().transpose() / h(p, 3);
+  if (segment.start_is_corner || std::abs(coefficients[0]) <= noise) {
+    consider(segment, 0.0, start, query, true, best);
+  } else {
+    best.bound_by((start - query).norm());
+  }
+  if (segment.end_is_corner ||
+      std::abs(coefficients[static_cast<size_t>(condition_degree_)]) <= noise) {
+    consider(segment, 1.0, end, query, true, best);
+  } else {
+    best.bound_by((end - query).norm());
+  }
   isolate(segment, query, coefficients.data(), noise, 0.0, 1.0, 0, best);
 }
 
@@ -231,19 +242,21 @@ std::optional<CurveProjection> CurveProjector::closest_point_within(const Eigen:
   order.reserve(segments_.size());
   for (size_t i = 0; i < segments_.size(); ++i) {
     const double lower = box_distance(point, segments_[i].box_min, segments_[i].box_max);
-    if (lower <= bound * (1.0 + kProjectionTieTolerance) + 1e-15 * scale_) {
+    if (lower <= bound * (1.0 + kProjectionTieTolerance) + kProjectionTieTolerance * scale_) {
       order.emplace_back(lower, static_cast<int>(i));
     }
   }
   std::sort(order.begin(), order.end());
-  Best best{bound, std::numeric_limits<double>::infinity(), false};
+  Best best;
+  best.bound = bound;
+  best.absolute_tie = kProjectionTieTolerance * scale_;
   for (const auto& [lower, index] : order) {
-    if (best.found && lower > best.distance * (1.0 + kProjectionTieTolerance) + 1e-15 * scale_) {
+    if (lower > best.pruning_bound()) {
       break;  // no remaining segment can hold a nearer point
     }
     search_segment(segments_[static_cast<size_t>(index)], point, best);
   }
-  if (!best.found) {
+  if (!best.found || best.distance > bound * (1.0 + kProjectionTieTolerance) + best.absolute_tie) {
     return std::nullopt;
   }
   CurveProjection result;

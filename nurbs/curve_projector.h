@@ -5,7 +5,7 @@
 // weights lies in the convex hull of its projected control points), and in every other segment
 // the stationary points of the squared distance are isolated exactly as sign changes of a
 // polynomial in Bernstein form, then polished by bracketed Newton. Segment ends are candidates
-// too, so minima at the curve's ends and at C^0 knots are found.
+// too where the minimum can sit without being stationary: the curve's ends and C^0 knots.
 
 #include <optional>
 #include <vector>
@@ -13,13 +13,10 @@
 #include <Eigen/Core>
 
 #include "nurbs/bernstein.h"
+#include "nurbs/nearest_candidate.h"
 #include "nurbs/nurbs_curve.h"
 
 namespace dnurbs {
-
-/// Relative tolerance within which two candidate distances count as a tie (then the smaller
-/// parameter wins): 1e-12 times the distance plus 1e-15 times the curve's size.
-inline constexpr double kProjectionTieTolerance = 1e-12;
 
 struct CurveProjection {
   double parameter = 0.0;
@@ -42,8 +39,9 @@ class CurveProjector {
   double scale() const { return scale_; }
 
   /// The globally nearest curve point to `point` (finite, else Error). Ties (distances within
-  /// kProjectionTieTolerance) go to the smallest parameter; periodic curves report parameters in
-  /// [domain_start, domain_end). `point` and `distance` are those of curve().point(parameter).
+  /// kProjectionTieTolerance, nearest_candidate.h) go to the smallest parameter; periodic curves
+  /// report parameters in [domain_start, domain_end). `point` and `distance` are those of
+  /// curve().point(parameter).
   CurveProjection closest_point(const Eigen::Vector3d& point) const;
 
   /// The nearest curve point if it is nearer than `bound` (plus the tie tolerance), else
@@ -68,13 +66,12 @@ class CurveProjector {
     std::array<Eigen::Vector3d, kMaxBernsteinDegree + 1> f{};
     double e_magnitude = 0.0;  ///< max |e_k|
     double f_magnitude = 0.0;  ///< max |f_k|
+    /// The segment's start / end is an end of an open curve or a C^0 knot (multiplicity >= p):
+    /// the minimum may sit there without being stationary.
+    bool start_is_corner = false;
+    bool end_is_corner = false;
   };
-  /// The best candidate of a query so far.
-  struct Best {
-    double distance = 0.0;
-    double parameter = 0.0;
-    bool found = false;
-  };
+  using Best = NearestCandidate<double>;
   /// A point of a segment: C, C', C'' at local parameter t in [0, 1].
   struct SegmentPoint {
     Eigen::Vector3d point;
@@ -85,7 +82,7 @@ class CurveProjector {
   void build_segment(int span, const Eigen::MatrixXd& homogeneous_rows);
   SegmentPoint evaluate(const Segment& segment, double t) const;
   void consider(const Segment& segment, double t, const Eigen::Vector3d& point,
-                const Eigen::Vector3d& query, Best& best) const;
+                const Eigen::Vector3d& query, bool exact, Best& best) const;
   void search_segment(const Segment& segment, const Eigen::Vector3d& query, Best& best) const;
   void isolate(const Segment& segment, const Eigen::Vector3d& query, const double* coefficients,
                double noise, double low, double high, int depth, Best& best) const;

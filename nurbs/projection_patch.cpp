@@ -9,6 +9,7 @@
 
 #include "nurbs/bernstein.h"
 #include "nurbs/knot_vector.h"
+#include "nurbs/nearest_candidate.h"
 
 namespace dnurbs {
 namespace {
@@ -18,12 +19,7 @@ constexpr double kNoise = 1024.0 * std::numeric_limits<double>::epsilon();
 // Halvings of a patch (the longer side each time) before a box is settled by its centre:
 // 20 per direction, boxes of 1e-6 of the patch.
 constexpr int kMaxLevel = 40;
-// Boxes one query may examine in one patch before the rest are settled by their centres (only
-// reached when the stationary points form a curve, e.g. a query on an axis of revolution).
-constexpr int kBoxBudget = 20000;
 constexpr int kMaxNewtonSteps = 50;
-// Relative slack of the pruning test, as the tie tolerance of the projectors.
-constexpr double kPruneTolerance = 1e-12;
 
 // Calls add(i, j, k, l, weight) for every coefficient pair of an (m1, n1) and an (m2, n2) net;
 // `weight` is that of their product in the (m1 + m2, n1 + n2) net (Farouki & Rajan eq. 7 per
@@ -243,7 +239,8 @@ bool ProjectionPatch::newton(const Eigen::Vector3d& query, Eigen::Vector2d& st) 
     const Eigen::Vector2d next = (st - hessian.inverse() * gradient).cwiseMax(0.0).cwiseMin(1.0);
     const double change = (next - st).cwiseAbs().maxCoeff();
     st = next;
-    if (!(change > 2.0 * std::numeric_limits<double>::epsilon())) {
+    // Converged when the step is at round-off (steps of a few ulps may repeat forever).
+    if (!(change > 1e-14)) {
       return true;
     }
   }
@@ -254,13 +251,13 @@ bool ProjectionPatch::newton(const Eigen::Vector3d& query, Eigen::Vector2d& st) 
 struct ProjectionPatch::Search {
   const ProjectionPatch& patch;
   const Eigen::Vector3d& query;
-  const std::function<double(double, double)>& visit;
+  ProjectionVisitor& visitor;
   std::vector<double>& workspace;
-  double bound = 0.0;           ///< the best distance so far (visit returns it)
+  double bound = 0.0;           ///< the bound on the minimum (the visitor returns it)
   double absolute_slack = 0.0;  ///< added to the bound before pruning (ties)
+  int& budget;                  ///< boxes the query may still halve (shared by its patches)
   double noise_u = 0.0;
   double noise_v = 0.0;
-  int budget = kBoxBudget;
 
   /// A box's slot: the nets g_u and g_v, then the 4 homogeneous coordinates of its control net.
   int geometry_size() const { return (patch.p_ + 1) * (patch.q_ + 1); }
@@ -324,11 +321,11 @@ struct ProjectionPatch::Search {
   }
 
   bool pruned(double lower) const {
-    return lower > bound * (1.0 + kPruneTolerance) + absolute_slack;
+    return lower > bound * (1.0 + kProjectionTieTolerance) + absolute_slack;
   }
 
-  // The box's corners are control points, exactly on the surface: candidates.
-  void visit_corners(const double* geometry, const Box& box) {
+  // The box's corners are control points, exactly on the surface: they bound the minimum.
+  void visit_corners(const double* geometry) {
     const int count = geometry_size();
     for (int corner = 0; corner < 4; ++corner) {
       const int i =
@@ -336,22 +333,24 @@ struct ProjectionPatch::Search {
       const double w = geometry[3 * count + i];
       const Eigen::Vector3d point(geometry[i] / w, geometry[count + i] / w,
                                   geometry[2 * count + i] / w);
-      if ((point - query).norm() < bound) {
-        bound = visit(corner % 2 == 0 ? box.s0 : box.s1, corner / 2 == 0 ? box.t0 : box.t1);
+      const double distance = (point - query).norm();
+      if (distance < bound) {
+        bound = visitor.surface_point(distance);
       }
     }
   }
 
-  /// What the Krawczyk test says about the zeros of G = (g_u, g_v) in a box.
-  enum class Zeros { kNone, kOne, kUnknown };
+  /// What the Krawczyk test says about the zeros of G = (g_u, g_v) in a box: none, exactly one,
+  /// at most one (J(X) nonsingular, but K not inside X: e.g. a zero on the box's edge), unknown.
+  enum class Zeros { kNone, kOne, kAtMostOne, kUnknown };
 
   // Krawczyk's test (Krawczyk, Newton-Algorithmen zur Bestimmung von Nullstellen mit
   // Fehlerschranken, Computing 4, 1969; Moore, A test for existence of solutions to nonlinear
   // systems, SIAM J. Numer. Anal. 14, 1977) on the box X = [0, 1]^2 of the nets: with J(X) the
   // interval hull of the Jacobian (from the nets' hodographs), Y ~ mid J(X)^-1 and c the centre,
   // K = c - Y G(c) + (I - Y J(X)) (X - c) holds every zero in X. K disjoint from X: no zero.
-  // K inside X (up to a relative 1e-9, for zeros on the box's edge) with J(X) nonsingular: one
-  // zero, to which x <- x - Y G(x) converges.
+  // K inside X (up to a relative 1e-9) with J(X) nonsingular: one zero, to which
+  // x <- x - Y G(x) converges. J(X) nonsingular alone: at most one zero (mean value theorem).
   Zeros krawczyk(const double* gu, const double* gv, Eigen::Matrix2d& y) const {
     const Net& u = patch.g_u_;
     const Net& v = patch.g_v_;
@@ -398,36 +397,47 @@ struct ProjectionPatch::Search {
     const Interval ad = a * d;
     const Interval bc = b * c;
     const bool injective = ad.low > bc.high || ad.high < bc.low;
-    return inside && injective ? Zeros::kOne : Zeros::kUnknown;
+    if (!injective) {
+      return Zeros::kUnknown;
+    }
+    return inside ? Zeros::kOne : Zeros::kAtMostOne;
   }
 
   // The zero of a box that passed Krawczyk's test: the contraction x <- x - Y G(x) on the nets
-  // (box coordinates), then Newton on the patch geometry from there.
-  Eigen::Vector2d solve(const double* gu, const double* gv, const Eigen::Matrix2d& y,
-                        const Box& box) const {
+  // (box coordinates, converging linearly), then Newton on the patch geometry from there
+  // (quadratically, to round-off). Returns false if Newton did not converge near the box; `st`
+  // is then the contraction's result.
+  bool solve(const double* gu, const double* gv, const Eigen::Matrix2d& y, const Box& box,
+             Eigen::Vector2d& st) const {
     const Net& u = patch.g_u_;
     const Net& v = patch.g_v_;
     Eigen::Vector2d x = Eigen::Vector2d::Constant(0.5);
-    for (int step = 0; step < 200; ++step) {
+    for (int step = 0; step < 100; ++step) {
       const Eigen::Vector2d g(bernstein_net_value(gu, u.degree_s, u.degree_t, x.x(), x.y()),
                               bernstein_net_value(gv, v.degree_s, v.degree_t, x.x(), x.y()));
       const Eigen::Vector2d next = x - y * g;
       const double change = (next - x).cwiseAbs().maxCoeff();
       x = next;
-      if (!(change > 1e-9)) {
+      if (!(change > 1e-12)) {
         break;
       }
     }
-    Eigen::Vector2d st(box.s0 + x.x() * (box.s1 - box.s0), box.t0 + x.y() * (box.t1 - box.t0));
-    st = st.cwiseMax(0.0).cwiseMin(1.0);
+    st = Eigen::Vector2d(box.s0 + x.x() * (box.s1 - box.s0), box.t0 + x.y() * (box.t1 - box.t0))
+             .cwiseMax(0.0)
+             .cwiseMin(1.0);
     Eigen::Vector2d polished = st;
-    const double slack = 1e-6 * std::max(box.s1 - box.s0, box.t1 - box.t0);
-    if (patch.newton(query, polished) && polished.x() >= box.s0 - slack &&
-        polished.x() <= box.s1 + slack && polished.y() >= box.t0 - slack &&
-        polished.y() <= box.t1 + slack) {
-      return polished;
+    if (patch.newton(query, polished) && inside(polished, box, 1e-6)) {
+      st = polished;
+      return true;
     }
-    return st;
+    return false;
+  }
+
+  // True if st lies in the box grown by `slack` times its size.
+  static bool inside(const Eigen::Vector2d& st, const Box& box, double slack) {
+    const double margin = slack * std::max(box.s1 - box.s0, box.t1 - box.t0);
+    return st.x() >= box.s0 - margin && st.x() <= box.s1 + margin && st.y() >= box.t0 - margin &&
+           st.y() <= box.t1 + margin;
   }
 
   void run(const double* nets, const Box& box, int level) {
@@ -439,7 +449,7 @@ struct ProjectionPatch::Search {
     if (pruned(lower_bound(geometry))) {
       return;  // no point of the box is nearer than the best so far
     }
-    visit_corners(geometry, box);
+    visit_corners(geometry);
     // Exclusion: g_u or g_v keeps one sign, so the box has no stationary point.
     if (keeps_one_sign(gu, u.size(), noise_u) || keeps_one_sign(gv, v.size(), noise_v)) {
       return;
@@ -447,7 +457,7 @@ struct ProjectionPatch::Search {
     const Eigen::Vector2d centre(0.5 * (box.s0 + box.s1), 0.5 * (box.t0 + box.t1));
     // Both conditions vanish to round-off over the box: the distance is constant there.
     if (within_noise(gu, u.size(), noise_u) && within_noise(gv, v.size(), noise_v)) {
-      bound = visit(centre.x(), centre.y());
+      bound = visitor.stationary_point(centre.x(), centre.y(), true);
       return;
     }
     --budget;
@@ -457,12 +467,27 @@ struct ProjectionPatch::Search {
       return;
     }
     if (zeros == Zeros::kOne) {
-      const Eigen::Vector2d st = solve(gu, gv, y, box);
-      bound = visit(st.x(), st.y());
+      Eigen::Vector2d st;
+      const bool exact = solve(gu, gv, y, box, st);
+      bound = visitor.stationary_point(st.x(), st.y(), exact);
       return;
     }
+    if (zeros == Zeros::kAtMostOne) {
+      // Newton from the centre landing in the box (within a hair, for a zero on its edge, as
+      // on a knot line or at a split) has found the box's only possible zero.
+      Eigen::Vector2d st = centre;
+      if (patch.newton(query, st) && inside(st, box, 1e-9)) {
+        bound = visitor.stationary_point(st.x(), st.y(), true);
+        return;
+      }
+    }
     if (level >= kMaxLevel || budget <= 0) {
-      bound = visit(centre.x(), centre.y());
+      // Unresolved (a continuum of stationary points, or a nearly singular one): Newton from the
+      // centre settles it if it converges, else the centre is reported as approximate.
+      Eigen::Vector2d st = centre;
+      const bool converged = patch.newton(query, st);
+      bound = converged ? visitor.stationary_point(st.x(), st.y(), true)
+                        : visitor.stationary_point(centre.x(), centre.y(), false);
       return;
     }
     // Halve the side along which the control net is longer (the piece's extent in space, not
@@ -495,8 +520,8 @@ struct ProjectionPatch::Search {
 
 void ProjectionPatch::stationary_points(const Eigen::Vector3d& query, double bound,
                                         double absolute_slack, std::vector<double>& workspace,
-                                        const std::function<double(double, double)>& visit) const {
-  Search search{*this, query, visit, workspace, bound, absolute_slack};
+                                        int& budget, ProjectionVisitor& visitor) const {
+  Search search{*this, query, visitor, workspace, bound, absolute_slack, budget};
   workspace.resize(static_cast<size_t>(2 * (kMaxLevel + 1) * search.size()));
   double* root = search.slot(0, 0);
   for (int i = 0; i < g_u_.size(); ++i) {

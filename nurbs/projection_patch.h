@@ -7,7 +7,6 @@
 // Kim, Geometric constraint solver using multivariate rational spline functions, ACM Symposium
 // on Solid Modeling and Applications 2001) and then found by Newton's method.
 
-#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -22,6 +21,18 @@ struct PatchPoint {
   Eigen::Vector3d ss = Eigen::Vector3d::Zero();
   Eigen::Vector3d st = Eigen::Vector3d::Zero();
   Eigen::Vector3d tt = Eigen::Vector3d::Zero();
+};
+
+/// Receives what a patch search finds; each call returns the current bound on the minimum
+/// distance (the search skips boxes farther than it).
+class ProjectionVisitor {
+ public:
+  virtual ~ProjectionVisitor() = default;
+  /// A stationary point of |S - Q|^2 at local (s, t): exact (Newton converged) or approximate
+  /// (the centre of a box too small to resolve further).
+  virtual double stationary_point(double s, double t, bool exact) = 0;
+  /// Some point of the patch lies at `distance` from the query: the minimum is at most that.
+  virtual double surface_point(double distance) = 0;
 };
 
 class ProjectionPatch {
@@ -43,18 +54,20 @@ class ProjectionPatch {
   /// S and derivatives at local (s, t) in [0, 1]^2 (Bernstein basis, quotient rule P&T eq. 4.20).
   PatchPoint evaluate(double s, double t) const;
 
-  /// Calls visit(s, t) at every stationary point of |S - Q|^2 in the closed patch that may be
-  /// nearer than the best distance so far, which visit returns (`bound` before the first call;
-  /// the patch's own corners are visited too). Boxes of the parameter square are skipped when
-  /// the bounding box of their control net is farther than that bound (plus bound * 1e-12 +
-  /// absolute_slack) or when g_u or g_v keeps one sign on them. Krawczyk's interval Newton test
-  /// excludes the other zero-free boxes and certifies boxes with exactly one zero, found by a
-  /// contraction and Newton's method; the rest are halved, down to 2^-20 of the patch per
-  /// direction, where the box centre is visited. `workspace` is scratch memory reused between
-  /// calls.
+  /// Reports to `visitor` every stationary point of |S - Q|^2 in the closed patch that may be
+  /// nearer than the bound (`bound` at first, then what the visitor returns). Boxes of the
+  /// parameter square are skipped when the bounding box of their control net is farther than
+  /// the bound (plus bound * kProjectionTieTolerance + absolute_slack) or when g_u or g_v keeps
+  /// one sign on them; their corners (points of the patch) lower the bound. Krawczyk's interval
+  /// Newton test excludes the other zero-free boxes and certifies boxes with exactly one zero,
+  /// found by a contraction and Newton's method; the rest are halved along their longer side in
+  /// space, down to 2^-40 of the patch's area or until `budget` (boxes halved, decremented,
+  /// shared between the patches of a query) runs out; such a box is settled by Newton's method
+  /// from its centre, or its centre is reported as approximate. `workspace` is scratch memory
+  /// reused between calls.
   void stationary_points(const Eigen::Vector3d& query, double bound, double absolute_slack,
-                         std::vector<double>& workspace,
-                         const std::function<double(double, double)>& visit) const;
+                         std::vector<double>& workspace, int& budget,
+                         ProjectionVisitor& visitor) const;
 
  private:
   struct Net {

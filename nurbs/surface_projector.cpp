@@ -12,6 +12,11 @@
 namespace dnurbs {
 namespace {
 
+// Boxes one query may halve in all its patches before the rest are settled by Newton's method
+// from their centres: ~20 times what the hardest random surfaces of the tests need (a few
+// hundred); reached when the stationary points form a curve (a query on an axis of revolution).
+constexpr int kBoxBudget = 4000;
+
 void check_query(const Eigen::Vector3d& point) {
   if (!point.allFinite()) {
     throw make_error("closest point: query point (", point.x(), ", ", point.y(), ", ", point.z(),
@@ -107,18 +112,28 @@ Eigen::Vector2d SurfaceProjector::to_parameter(const ProjectionPatch& patch, dou
   return parameter;
 }
 
-void SurfaceProjector::consider(double distance, const Eigen::Vector2d& parameter,
-                                Best& best) const {
-  const double tie = kProjectionTieTolerance * best.distance + 1e-15 * scale_;
-  const bool smaller_parameter =
-      parameter.x() < best.parameter.x() ||
-      (parameter.x() == best.parameter.x() && parameter.y() < best.parameter.y());
-  const bool better = !best.found || distance < best.distance - tie ||
-                      (distance <= best.distance + tie && smaller_parameter);
-  if (better) {
-    best = {distance, parameter, true};
+/// Passes a patch's stationary points to the query's running answer as parameters (u, v).
+class SurfaceProjector::PatchVisitor : public ProjectionVisitor {
+ public:
+  PatchVisitor(const SurfaceProjector& projector, const ProjectionPatch& patch,
+               const Eigen::Vector3d& query, Best& best)
+      : projector_(projector), patch_(patch), query_(query), best_(best) {}
+  double stationary_point(double s, double t, bool exact) override {
+    best_.offer((patch_.evaluate(s, t).point - query_).norm(),
+                projector_.to_parameter(patch_, s, t), exact);
+    return std::min(best_.bound, best_.distance);
   }
-}
+  double surface_point(double distance) override {
+    best_.bound_by(distance);
+    return std::min(best_.bound, best_.distance);
+  }
+
+ private:
+  const SurfaceProjector& projector_;
+  const ProjectionPatch& patch_;
+  const Eigen::Vector3d& query_;
+  Best& best_;
+};
 
 SurfaceProjection SurfaceProjector::closest_point(const Eigen::Vector3d& point) const {
   check_query(point);
@@ -130,37 +145,34 @@ SurfaceProjection SurfaceProjector::closest_point(const Eigen::Vector3d& point) 
   }
   std::sort(order.begin(), order.end());
   Best best;
-  const auto consider_corners = [&](const ProjectionPatch& patch) {
-    for (int corner = 0; corner < 4; ++corner) {
-      consider((patch.corner(corner) - point).norm(), to_parameter(patch, corner % 2, corner / 2),
-               best);
-    }
-  };
-  // A first bound from the nearest-looking patch's corners, then the boundary and crease
-  // curves (their ends are the corners of the domain).
-  consider_corners(patches_[static_cast<size_t>(order.front().second)]);
+  best.absolute_tie = kProjectionTieTolerance * scale_;
+  // A first bound from the nearest-looking patch's corners (points of the surface), then the
+  // boundary and crease curves (their ends are the corners of the domain).
+  const ProjectionPatch& first = patches_[static_cast<size_t>(order.front().second)];
+  for (int corner = 0; corner < 4; ++corner) {
+    best.bound_by((first.corner(corner) - point).norm());
+  }
   for (const Edge& edge : edges_) {
     const std::optional<CurveProjection> nearest =
-        edge.projector.closest_point_within(point, best.distance);
+        edge.projector.closest_point_within(point, std::min(best.bound, best.distance));
     if (nearest) {
-      consider(nearest->distance,
-               edge.fixed_u ? Eigen::Vector2d(edge.value, nearest->parameter)
-                            : Eigen::Vector2d(nearest->parameter, edge.value),
-               best);
+      best.offer(nearest->distance,
+                 edge.fixed_u ? Eigen::Vector2d(edge.value, nearest->parameter)
+                              : Eigen::Vector2d(nearest->parameter, edge.value),
+                 true);
     }
   }
   // Interior stationary points of every patch that may hold a nearer point.
   thread_local std::vector<double> workspace;
+  int budget = kBoxBudget;
   for (const auto& [lower, index] : order) {
-    if (lower > best.distance * (1.0 + kProjectionTieTolerance) + 1e-15 * scale_) {
+    if (lower > best.pruning_bound()) {
       break;
     }
     const ProjectionPatch& patch = patches_[static_cast<size_t>(index)];
-    patch.stationary_points(
-        point, best.distance, 1e-15 * scale_, workspace, [&](double s, double t) {
-          consider((patch.evaluate(s, t).point - point).norm(), to_parameter(patch, s, t), best);
-          return best.distance;
-        });
+    PatchVisitor visitor(*this, patch, point, best);
+    patch.stationary_points(point, std::min(best.bound, best.distance), best.absolute_tie,
+                            workspace, budget, visitor);
   }
   SurfaceProjection result;
   result.parameter = best.parameter;

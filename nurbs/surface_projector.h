@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "nurbs/curve_projector.h"
+#include "nurbs/nearest_candidate.h"
 #include "nurbs/nurbs_surface.h"
 #include "nurbs/projection_patch.h"
 
@@ -37,7 +38,8 @@ class SurfaceProjector {
   double scale() const { return scale_; }
 
   /// The globally nearest surface point to `point` (finite, else Error). Ties (distances
-  /// within kProjectionTieTolerance) go to the smallest (u, v), compared lexicographically;
+  /// within kProjectionTieTolerance, nearest_candidate.h) go to the smallest (u, v), compared
+  /// lexicographically;
   /// periodic directions report parameters in [domain_start, domain_end). `point` and
   /// `distance` are those of surface().point(u, v).
   SurfaceProjection closest_point(const Eigen::Vector3d& point) const;
@@ -53,15 +55,11 @@ class SurfaceProjector {
     bool fixed_u = true;
     double value = 0.0;
   };
-  struct Best {
-    double distance = 0.0;
-    Eigen::Vector2d parameter = Eigen::Vector2d::Zero();
-    bool found = false;
-  };
+  using Best = NearestCandidate<Eigen::Vector2d>;
+  class PatchVisitor;
 
   void add_edges(bool fixed_u, const Eigen::MatrixXd& homogeneous);
   Eigen::Vector2d to_parameter(const ProjectionPatch& patch, double s, double t) const;
-  void consider(double distance, const Eigen::Vector2d& parameter, Best& best) const;
 
   NurbsSurface surface_;
   double scale_ = 0.0;

@@ -58,11 +58,33 @@ struct CurveSamples {
   std::vector<Eigen::Vector3d> points;
 };
 
+/// Samples every 1/samples_per_span of each span, then halves every interval whose polyline
+/// (through its midpoint) is longer than 1/500 of the control net's size (to 2^-16 of the
+/// span): dense in arc length too, where extreme weights crowd a curve's turns into a sliver of
+/// parameter.
 inline CurveSamples sample_curve(const NurbsCurve& curve, int samples_per_span) {
+  const Eigen::MatrixX3d& net = curve.control_points();
+  const double step = (net.colwise().maxCoeff() - net.colwise().minCoeff()).norm() / 500.0;
   CurveSamples result;
-  result.parameters = dense_parameters(curve.knots(), samples_per_span);
-  for (const double u : result.parameters) {
-    result.points.push_back(curve.point(u));
+  const std::vector<double> coarse = dense_parameters(curve.knots(), samples_per_span);
+  const auto refine = [&](const auto& self, double a, const Eigen::Vector3d& pa, double b,
+                          const Eigen::Vector3d& pb, int depth) -> void {
+    const double middle = 0.5 * (a + b);
+    const Eigen::Vector3d pm = curve.point(middle);
+    if (depth < 16 && (pm - pa).norm() + (pb - pm).norm() > step) {
+      self(self, a, pa, middle, pm, depth + 1);
+      self(self, middle, pm, b, pb, depth + 1);
+      return;
+    }
+    result.parameters.push_back(middle);
+    result.points.push_back(pm);
+    result.parameters.push_back(b);
+    result.points.push_back(pb);
+  };
+  result.parameters.push_back(coarse.front());
+  result.points.push_back(curve.point(coarse.front()));
+  for (size_t i = 0; i + 1 < coarse.size(); ++i) {
+    refine(refine, coarse[i], result.points.back(), coarse[i + 1], curve.point(coarse[i + 1]), 0);
   }
   return result;
 }
@@ -130,10 +152,48 @@ inline NurbsCurve iso_curve(const NurbsSurface& surface, bool fixed_u, double va
   return {along, points, weights};
 }
 
+/// Grid parameters along u (along_u) or v: per non-empty span at least `minimum` samples, more
+/// where the iso-curves at 9 parameters across run longer than 1/100 of the control net's size
+/// between samples (up to 128 per span), so that the grid is dense in space, not only in
+/// parameters.
+inline std::vector<double> adaptive_parameters(const NurbsSurface& surface, bool along_u,
+                                               int minimum) {
+  const KnotVector& knots = along_u ? surface.knots_u() : surface.knots_v();
+  const KnotVector& across = along_u ? surface.knots_v() : surface.knots_u();
+  const Eigen::MatrixX3d& net = surface.control_points();
+  const double step = (net.colwise().maxCoeff() - net.colwise().minCoeff()).norm() / 100.0;
+  const auto point = [&](double a, double b) {
+    return along_u ? surface.point(a, b) : surface.point(b, a);
+  };
+  std::vector<double> parameters;
+  for (const int span : knots.non_empty_spans()) {
+    const double start = knots[span];
+    const double end = knots[span + 1];
+    double longest = 0.0;  // longest iso-curve polyline over the span (64 pieces)
+    for (int c = 0; c <= 8; ++c) {
+      const double b =
+          across.domain_start() + (across.domain_end() - across.domain_start()) * c / 8;
+      double length = 0.0;
+      for (int i = 0; i < 64; ++i) {
+        length += (point(start + (end - start) * (i + 1) / 64, b) -
+                   point(start + (end - start) * i / 64, b))
+                      .norm();
+      }
+      longest = std::max(longest, length);
+    }
+    const int count = std::clamp(static_cast<int>(std::ceil(longest / step)), minimum, 128);
+    for (int i = 0; i < count; ++i) {
+      parameters.push_back(start + (end - start) * i / count);
+    }
+  }
+  parameters.push_back(knots.domain_end());
+  return parameters;
+}
+
 inline SurfaceSamples sample_surface(const NurbsSurface& surface, int samples_per_span) {
   SurfaceSamples result;
-  result.u = dense_parameters(surface.knots_u(), samples_per_span);
-  result.v = dense_parameters(surface.knots_v(), samples_per_span);
+  result.u = adaptive_parameters(surface, true, samples_per_span);
+  result.v = adaptive_parameters(surface, false, samples_per_span);
   for (const double u : result.u) {
     for (const double v : result.v) {
       result.points.push_back(surface.point(u, v));
@@ -160,11 +220,16 @@ inline SurfaceSamples sample_surface(const NurbsSurface& surface, int samples_pe
   return result;
 }
 
-/// Newton's method on the gradient of |S - Q|^2 / 2 from (u, v), kept in the domain box.
+/// Damped Newton on the gradient of |S - Q|^2 / 2 from (u, v) (periodic directions wrap, open
+/// ones are clamped to the domain); steps that do not decrease the distance are halved.
 inline double refine_on_surface(const NurbsSurface& surface, const Eigen::Vector3d& query,
                                 Eigen::Vector2d uv) {
-  const Eigen::Vector2d low(surface.knots_u().domain_start(), surface.knots_v().domain_start());
-  const Eigen::Vector2d high(surface.knots_u().domain_end(), surface.knots_v().domain_end());
+  const KnotVector& knots_u = surface.knots_u();
+  const KnotVector& knots_v = surface.knots_v();
+  const auto keep = [](const KnotVector& knots, double x) {
+    return knots.is_periodic() ? knots.to_domain(x)
+                               : std::clamp(x, knots.domain_start(), knots.domain_end());
+  };
   double best = (surface.point(uv.x(), uv.y()) - query).norm();
   for (int step = 0; step < 60; ++step) {
     const SurfaceDerivatives d = surface.derivatives(uv.x(), uv.y(), 2);
@@ -174,16 +239,24 @@ inline double refine_on_surface(const NurbsSurface& surface, const Eigen::Vector
     hessian << d(1, 0).squaredNorm() + offset.dot(d(2, 0)),
         d(1, 0).dot(d(0, 1)) + offset.dot(d(1, 1)), d(1, 0).dot(d(0, 1)) + offset.dot(d(1, 1)),
         d(0, 1).squaredNorm() + offset.dot(d(0, 2));
-    const Eigen::Vector2d next = (uv - hessian.inverse() * gradient).cwiseMax(low).cwiseMin(high);
-    if (!next.allFinite()) {
+    Eigen::Vector2d delta = -hessian.inverse() * gradient;
+    if (!delta.allFinite() || gradient.dot(delta) >= 0.0) {
+      delta = -gradient / (d(1, 0).squaredNorm() + d(0, 1).squaredNorm());  // steepest descent
+    }
+    bool improved = false;
+    Eigen::Vector2d next = uv;
+    for (int halving = 0; halving < 40 && !improved; ++halving, delta *= 0.5) {
+      next = Eigen::Vector2d(keep(knots_u, uv.x() + delta.x()), keep(knots_v, uv.y() + delta.y()));
+      const double distance = (surface.point(next.x(), next.y()) - query).norm();
+      if (distance <= best) {
+        improved = true;
+        best = distance;
+      }
+    }
+    if (!improved || (next - uv).cwiseAbs().maxCoeff() <= 1e-16) {
       break;
     }
-    const bool done = (next - uv).cwiseAbs().maxCoeff() <= 1e-16;
     uv = next;
-    best = std::min(best, (surface.point(uv.x(), uv.y()) - query).norm());
-    if (done) {
-      break;
-    }
   }
   return best;
 }

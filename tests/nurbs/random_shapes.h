@@ -28,6 +28,9 @@ struct RandomKnotOptions {
   /// Periodic vectors: move the repeated seam copies by a few ulps of the seam's magnitude, as a
   /// list computed by t_{i+n} - T carries them.
   bool perturb_seam = false;
+  /// Control points beyond the fewest the degree allows (p + 1): a periodic polyline through 2
+  /// points retraces itself, which point inversion cannot tell apart.
+  int extra_control_points = 0;
 };
 
 inline int random_int(std::mt19937& generator, int low, int high) {
@@ -71,8 +74,8 @@ inline std::vector<double> random_period_knots(int degree, const RandomKnotOptio
       options.seam_multiplicity > 0 ? options.seam_multiplicity : random_int(generator, 1, degree);
   const int at_start = random_int(generator, 1, seam);
   const int at_end = seam - at_start + 1;  // copies of t_{p+n}, the last one included
-  const std::vector<double> interior =
-      random_interior_knots(degree, start, end, degree + 1 - seam, generator);
+  const std::vector<double> interior = random_interior_knots(
+      degree, start, end, degree + 1 - seam + options.extra_control_points, generator);
   std::vector<double> period(static_cast<size_t>(at_start), start);
   period.insert(period.end(), interior.begin(), interior.end());
   period.insert(period.end(), static_cast<size_t>(at_end), end);
@@ -97,7 +100,8 @@ inline KnotVector random_knot_vector(int degree, const RandomKnotOptions& option
   }
   const double start = random_real(generator, -3.0, 3.0);
   const double end = start + random_real(generator, 0.5, 4.0);
-  const std::vector<double> interior = random_interior_knots(degree, start, end, 0, generator);
+  const std::vector<double> interior =
+      random_interior_knots(degree, start, end, options.extra_control_points, generator);
   std::vector<double> knots;
   // Unclamped ends: the knots outside the domain spread over the span next to it.
   const int at_start = options.clamped ? degree + 1 : random_int(generator, 1, degree + 1);
