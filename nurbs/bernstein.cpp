@@ -1,5 +1,7 @@
 #include "nurbs/bernstein.h"
 
+#include <cstddef>
+
 namespace dnurbs {
 
 double binomial_coefficient(int n, int k) {
@@ -21,18 +23,19 @@ double bernstein_product_weight(int m, int i, int n, int j) {
 void split_bernstein_half(const double* c, int degree, int stride, double* left, double* right) {
   // de Casteljau's triangle at t = 1/2: the left edge gives [0, 1/2], the right edge [1/2, 1].
   std::array<double, kMaxBernsteinDegree + 1> work{};
-  for (int i = 0; i <= degree; ++i) {
-    work[static_cast<size_t>(i)] = c[i * stride];
+  const auto step = static_cast<std::ptrdiff_t>(stride);
+  const auto count = static_cast<size_t>(degree) + 1;
+  for (size_t i = 0; i < count; ++i) {
+    work[i] = c[static_cast<std::ptrdiff_t>(i) * step];
   }
-  right[degree * stride] = work[static_cast<size_t>(degree)];
+  right[static_cast<std::ptrdiff_t>(degree) * step] = work[count - 1];
   left[0] = work[0];
-  for (int r = 1; r <= degree; ++r) {
-    for (int i = 0; i <= degree - r; ++i) {
-      work[static_cast<size_t>(i)] =
-          0.5 * (work[static_cast<size_t>(i)] + work[static_cast<size_t>(i + 1)]);
+  for (size_t r = 1; r < count; ++r) {
+    for (size_t i = 0; i + r < count; ++i) {
+      work[i] = 0.5 * (work[i] + work[i + 1]);
     }
-    left[r * stride] = work[0];
-    right[(degree - r) * stride] = work[static_cast<size_t>(degree - r)];
+    left[static_cast<std::ptrdiff_t>(r) * step] = work[0];
+    right[static_cast<std::ptrdiff_t>(count - 1 - r) * step] = work[count - 1 - r];
   }
 }
 

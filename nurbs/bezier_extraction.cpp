@@ -64,7 +64,8 @@ Eigen::MatrixXd bezier_patch(const KnotVector& knots_u, const KnotVector& knots_
     for (int b = 0; b <= q; ++b) {
       local.row(b) = rows.row(i * count_v + knots_v.control_point_index(span_v, b));
     }
-    along_v.middleRows(a * (q + 1), q + 1) = bezier_from_local(knots_v, local, span_v);
+    along_v.middleRows(static_cast<Eigen::Index>(a) * (q + 1), q + 1) =
+        bezier_from_local(knots_v, local, span_v);
   }
   Eigen::MatrixXd patch((p + 1) * (q + 1), columns);
   Eigen::MatrixXd column(p + 1, columns);

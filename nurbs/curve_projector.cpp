@@ -11,6 +11,12 @@
 namespace dnurbs {
 namespace {
 
+// Element i (an int index) of a std::array or std::vector.
+template <typename Container>
+auto& at(Container& container, int i) {
+  return container[static_cast<size_t>(i)];
+}
+
 // Round-off allowance of a stationarity coefficient e_k - Q.f_k: each is a sum of a few dozen
 // products, so 256 ulps of the magnitudes involved bound its error.
 constexpr double kNoise = 256.0 * std::numeric_limits<double>::epsilon();
@@ -88,7 +94,7 @@ void CurveProjector::build_segment(int span, const Eigen::MatrixXd& homogeneous_
       continue;
     }
     for (int j = 0; j <= p; ++j) {
-      d[static_cast<size_t>(i + j)] +=
+      at(d, i + j) +=
           bernstein_product_weight(p - 1, i, p, j) *
           (derivative.head<3>() * h(j, 3) - h.row(j).head<3>().transpose() * derivative[3]);
     }
@@ -101,8 +107,8 @@ void CurveProjector::build_segment(int span, const Eigen::MatrixXd& homogeneous_
     for (int j = 0; j <= d_degree; ++j) {
       const double weight = bernstein_product_weight(p, i, d_degree, j);
       const Eigen::Vector3d& dj = d[static_cast<size_t>(j)];
-      segment.e[static_cast<size_t>(i + j)] += weight * h.row(i).head<3>().dot(dj.transpose());
-      segment.f[static_cast<size_t>(i + j)] += weight * h(i, 3) * dj;
+      at(segment.e, i + j) += weight * h.row(i).head<3>().dot(dj.transpose());
+      at(segment.f, i + j) += weight * h(i, 3) * dj;
     }
   }
   for (int k = 0; k <= condition_degree_; ++k) {

@@ -103,7 +103,8 @@ bool remove_once(std::vector<double>& t, Eigen::MatrixXd& points, int p, double 
   const int block_count = static_cast<int>(points.cols()) / block_size;
   for (int e = 0; e <= unknowns; ++e) {
     for (int b = 0; b < block_count; ++b) {
-      if (!(residual.row(e).segment(b * block_size, block_size).norm() <= tolerance)) {
+      const Eigen::Index start = static_cast<Eigen::Index>(b) * block_size;
+      if (!(residual.row(e).segment(start, block_size).norm() <= tolerance)) {
         return false;
       }
     }

@@ -9,6 +9,12 @@
 namespace dnurbs {
 namespace {
 
+// Element i (an int index) of a std::array or std::vector.
+template <typename Container>
+auto& at(Container& container, int i) {
+  return container[static_cast<size_t>(i)];
+}
+
 // Non-negative remainder of i modulo n.
 int wrap_index(int i, int n) {
   const int remainder = i % n;
@@ -68,9 +74,9 @@ KnotsAndRows clamp_window(const KnotsAndRows& window) {
   const int h = first_index_of(t, end);
   const int first_row = g + start_multiplicity - p - 1;
   const int count = h - first_row;
-  std::vector<double> clamped(static_cast<size_t>(p + 1), start);
+  std::vector<double> clamped(static_cast<size_t>(p) + 1, start);
   clamped.insert(clamped.end(), t.begin() + g + start_multiplicity, t.begin() + h);
-  clamped.insert(clamped.end(), static_cast<size_t>(p + 1), end);
+  clamped.insert(clamped.end(), static_cast<size_t>(p) + 1, end);
   return {KnotVector(p, std::move(clamped)), refined.rows.middleRows(first_row, count)};
 }
 
@@ -89,7 +95,7 @@ Eigen::MatrixXd wrap_periodic(const KnotsAndRows& window, const KnotVector& targ
       kPeriodicSeamTolerance * std::max({std::abs(start), std::abs(end), end - start});
   const auto matches = [&](int j, int i) {
     for (int k = 0; k <= p + 1; ++k) {
-      if (std::abs(u[static_cast<size_t>(j + k)] - target.extended_knot(i + k)) > tolerance) {
+      if (std::abs(at(u, j + k) - target.extended_knot(i + k)) > tolerance) {
         return false;
       }
     }
@@ -102,8 +108,8 @@ Eigen::MatrixXd wrap_periodic(const KnotsAndRows& window, const KnotVector& targ
     for (int j = first_index_of(u, first_knot - tolerance);
          j <= last_basis && u[static_cast<size_t>(j)] <= first_knot + tolerance && !found; ++j) {
       // Only basis functions whose support lies in the window's domain represent the spline.
-      const bool inside = u[static_cast<size_t>(j)] >= start - tolerance &&
-                          u[static_cast<size_t>(j + p + 1)] <= end + tolerance;
+      const bool inside =
+          u[static_cast<size_t>(j)] >= start - tolerance && at(u, j + p + 1) <= end + tolerance;
       if (inside && matches(j, i)) {
         result.row(i % n) = window.rows.row(j);
         found = true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include <Eigen/Dense>
@@ -13,6 +14,12 @@
 
 namespace dnurbs {
 namespace {
+
+// Element i (an int index) of a std::array or std::vector.
+template <typename Container>
+auto& at(Container& container, int i) {
+  return container[static_cast<size_t>(i)];
+}
 
 // Round-off allowance of a stationarity coefficient: sums of up to a few hundred products.
 constexpr double kNoise = 1024.0 * std::numeric_limits<double>::epsilon();
@@ -26,12 +33,19 @@ constexpr int kMaxNewtonSteps = 50;
 // direction).
 template <typename Add>
 void for_each_product(int m1, int n1, int m2, int n2, Add add) {
+  // The weights along t, C(n1, j) C(n2, l) / C(n1 + n2, j + l), once for all (i, k).
+  std::vector<double> along_t(static_cast<size_t>((n1 + 1) * (n2 + 1)));
+  for (int j = 0; j <= n1; ++j) {
+    for (int l = 0; l <= n2; ++l) {
+      at(along_t, j * (n2 + 1) + l) = bernstein_product_weight(n1, j, n2, l);
+    }
+  }
   for (int i = 0; i <= m1; ++i) {
     for (int k = 0; k <= m2; ++k) {
       const double along_s = bernstein_product_weight(m1, i, m2, k);
       for (int j = 0; j <= n1; ++j) {
         for (int l = 0; l <= n2; ++l) {
-          add(i, j, k, l, along_s * bernstein_product_weight(n1, j, n2, l));
+          add(i, j, k, l, along_s * at(along_t, j * (n2 + 1) + l));
         }
       }
     }
@@ -97,7 +111,8 @@ void split_net(const double* c, int m, int n, bool along_s, double* left, double
     }
   } else {
     for (int i = 0; i <= m; ++i) {
-      split_bernstein_half(c + i * (n + 1), n, 1, left + i * (n + 1), right + i * (n + 1));
+      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(i) * (n + 1);
+      split_bernstein_half(c + row, n, 1, left + row, right + row);
     }
   }
 }
@@ -120,9 +135,7 @@ ProjectionPatch::ProjectionPatch(const Eigen::MatrixXd& homogeneous, int degree_
 void ProjectionPatch::build_nets(bool rational) {
   const int p = p_;
   const int q = q_;
-  const auto h = [&](int a, int b) -> const Eigen::Vector4d& {
-    return net_[static_cast<size_t>(a * (q + 1) + b)];
-  };
+  const auto h = [&](int a, int b) -> const Eigen::Vector4d& { return at(net_, a * (q + 1) + b); };
   // Partial derivative nets of H: H_u of degree (p - 1, q), H_v of degree (p, q - 1).
   const auto derivative = [&](bool along_u, int a, int b) -> Eigen::Vector4d {
     return along_u ? Eigen::Vector4d(p * (h(a + 1, b) - h(a, b)))
@@ -140,13 +153,13 @@ void ProjectionPatch::build_nets(bool rational) {
     if (rational) {
       for_each_product(dm, dn, p, q, [&](int i, int j, int k, int l, double weight) {
         const Eigen::Vector4d hd = derivative(along_u, i, j);
-        d[static_cast<size_t>((i + k) * (d_n + 1) + j + l)] +=
+        at(d, (i + k) * (d_n + 1) + j + l) +=
             weight * (hd.head<3>() * h(k, l)[3] - h(k, l).head<3>() * hd[3]);
       });
     } else {
       for (int i = 0; i <= dm; ++i) {
         for (int j = 0; j <= dn; ++j) {
-          d[static_cast<size_t>(i * (d_n + 1) + j)] = derivative(along_u, i, j).head<3>();
+          at(d, i * (d_n + 1) + j) = derivative(along_u, i, j).head<3>();
         }
       }
     }
@@ -156,10 +169,10 @@ void ProjectionPatch::build_nets(bool rational) {
     net.e.assign(static_cast<size_t>(net.size()), 0.0);
     net.f.assign(static_cast<size_t>(net.size()), Eigen::Vector3d::Zero());
     for_each_product(p, q, d_m, d_n, [&](int i, int j, int k, int l, double weight) {
-      const Eigen::Vector3d& dk = d[static_cast<size_t>(k * (d_n + 1) + l)];
-      const size_t index = static_cast<size_t>((i + k) * (net.degree_t + 1) + j + l);
-      net.e[index] += weight * h(i, j).head<3>().dot(dk);
-      net.f[index] += weight * h(i, j)[3] * dk;
+      const Eigen::Vector3d& dk = at(d, k * (d_n + 1) + l);
+      const int index = (i + k) * (net.degree_t + 1) + j + l;
+      at(net.e, index) += weight * h(i, j).head<3>().dot(dk);
+      at(net.f, index) += weight * h(i, j)[3] * dk;
     });
     for (size_t i = 0; i < net.e.size(); ++i) {
       net.e_magnitude = std::max(net.e_magnitude, std::abs(net.e[i]));
@@ -175,7 +188,7 @@ double ProjectionPatch::lower_bound(const Eigen::Vector3d& query) const {
 Eigen::Vector3d ProjectionPatch::corner(int i) const {
   const int a = i % 2 == 0 ? 0 : p_;
   const int b = i / 2 == 0 ? 0 : q_;
-  const Eigen::Vector4d& h = net_[static_cast<size_t>(a * (q_ + 1) + b)];
+  const Eigen::Vector4d& h = at(net_, a * (q_ + 1) + b);
   return h.head<3>() / h[3];
 }
 
@@ -196,7 +209,7 @@ PatchPoint ProjectionPatch::evaluate(double s, double t) const {
     Eigen::Vector4d r1 = Eigen::Vector4d::Zero();
     Eigen::Vector4d r2 = Eigen::Vector4d::Zero();
     for (int b = 0; b <= q_; ++b) {
-      const Eigen::Vector4d& c = net_[static_cast<size_t>(a * (q_ + 1) + b)];
+      const Eigen::Vector4d& c = at(net_, a * (q_ + 1) + b);
       r0 += basis_t[0][static_cast<size_t>(b)] * c;
       r1 += basis_t[1][static_cast<size_t>(b)] * c;
       r2 += basis_t[2][static_cast<size_t>(b)] * c;
@@ -236,13 +249,18 @@ bool ProjectionPatch::newton(const Eigen::Vector3d& query, Eigen::Vector2d& st) 
     if (!(std::abs(determinant) > 0.0) || !std::isfinite(determinant)) {
       return false;
     }
-    const Eigen::Vector2d next = (st - hessian.inverse() * gradient).cwiseMax(0.0).cwiseMin(1.0);
-    const double change = (next - st).cwiseAbs().maxCoeff();
-    st = next;
-    // Converged when the step is at round-off (steps of a few ulps may repeat forever).
-    if (!(change > 1e-14)) {
+    const Eigen::Vector2d newton_step = hessian.inverse() * gradient;
+    const Eigen::Vector2d next = (st - newton_step).cwiseMax(0.0).cwiseMin(1.0);
+    // Converged when the Newton step itself is at round-off (steps of a few ulps may repeat
+    // forever); a step cut by the patch's edge towards a zero outside is no convergence.
+    if (!(newton_step.cwiseAbs().maxCoeff() > 1e-14)) {
+      st = next;
       return true;
     }
+    if (next == st) {
+      return false;
+    }
+    st = next;
   }
   return false;
 }
@@ -276,7 +294,8 @@ struct ProjectionPatch::Search {
     Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector3d high = -low;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    std::array<Eigen::Vector3d, (kMaxDegree + 1) * (kMaxDegree + 1)> projected;
+    constexpr size_t kMaxNet = static_cast<size_t>(kMaxDegree + 1) * (kMaxDegree + 1);
+    std::array<Eigen::Vector3d, kMaxNet> projected;
     for (int i = 0; i < count; ++i) {
       const double w = geometry[3 * count + i];
       Eigen::Vector3d& point = projected[static_cast<size_t>(i)];
@@ -522,7 +541,7 @@ void ProjectionPatch::stationary_points(const Eigen::Vector3d& query, double bou
                                         double absolute_slack, std::vector<double>& workspace,
                                         int& budget, ProjectionVisitor& visitor) const {
   Search search{*this, query, visitor, workspace, bound, absolute_slack, budget};
-  workspace.resize(static_cast<size_t>(2 * (kMaxLevel + 1) * search.size()));
+  workspace.resize(2 * (static_cast<size_t>(kMaxLevel) + 1) * static_cast<size_t>(search.size()));
   double* root = search.slot(0, 0);
   for (int i = 0; i < g_u_.size(); ++i) {
     root[i] = g_u_.e[static_cast<size_t>(i)] - query.dot(g_u_.f[static_cast<size_t>(i)]);

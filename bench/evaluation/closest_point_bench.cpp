@@ -73,10 +73,12 @@ NurbsSurface bench_surface(bool rational, unsigned seed) {
   std::uniform_real_distribution<double> height(-1.0, 1.0);
   std::uniform_real_distribution<double> weight(0.5, 2.0);
   const int n = 14;
-  Eigen::MatrixX3d points(n * n, 3);
-  Eigen::VectorXd weights = Eigen::VectorXd::Ones(n * n);
-  for (int i = 0; i < n * n; ++i) {
-    points.row(i) << i / n, i % n, height(generator);
+  const Eigen::Index count = static_cast<Eigen::Index>(n) * n;
+  Eigen::MatrixX3d points(count, 3);
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(count);
+  for (int i = 0; i < count; ++i) {
+    const int row = i / n;
+    points.row(i) << row, i % n, height(generator);
     weights[i] = rational ? weight(generator) : 1.0;
   }
   return {KnotVector::clamped_uniform(kDegree, n), KnotVector::clamped_uniform(kDegree, n), points,
@@ -235,6 +237,7 @@ std::vector<Row> curve_rows(bool rational) {
           .norm();
   const dnurbs::testing::CurveSamples samples = dnurbs::testing::sample_curve(curve, 64);
   std::vector<double> reference;
+  reference.reserve(queries.size());
   for (const Eigen::Vector3d& query : queries) {
     reference.push_back(dnurbs::testing::brute_force_distance(curve, samples, query));
   }
@@ -267,6 +270,7 @@ std::vector<Row> surface_rows(bool rational) {
                           .norm();
   const dnurbs::testing::SurfaceSamples samples = dnurbs::testing::sample_surface(surface, 12);
   std::vector<double> reference;
+  reference.reserve(queries.size());
   for (const Eigen::Vector3d& query : queries) {
     reference.push_back(dnurbs::testing::brute_force_distance(surface, samples, query));
   }

@@ -42,9 +42,9 @@ TEST(Bernstein, ProductWeightsMultiplyPolynomials) {
       std::vector<double> product(static_cast<size_t>(m + n + 1), 0.0);
       for (int i = 0; i <= m; ++i) {
         for (int j = 0; j <= n; ++j) {
-          product[static_cast<size_t>(i + j)] += bernstein_product_weight(m, i, n, j) *
-                                                 a[static_cast<size_t>(i)] *
-                                                 b[static_cast<size_t>(j)];
+          product[static_cast<size_t>(i) + static_cast<size_t>(j)] +=
+              bernstein_product_weight(m, i, n, j) * a[static_cast<size_t>(i)] *
+              b[static_cast<size_t>(j)];
         }
       }
       for (const double t : {0.0, 0.13, 0.5, 0.77, 1.0}) {
@@ -130,9 +130,10 @@ TEST(Bernstein, NetValueIsTheTensorProduct) {
     double expected = 0.0;
     for (int i = 0; i <= m; ++i) {
       for (int j = 0; j <= n; ++j) {
-        expected += net[static_cast<size_t>(i * (n + 1) + j)] * binomial_coefficient(m, i) *
-                    std::pow(s, i) * std::pow(1 - s, m - i) * binomial_coefficient(n, j) *
-                    std::pow(t, j) * std::pow(1 - t, n - j);
+        const auto index = static_cast<size_t>(i) * (n + 1) + static_cast<size_t>(j);
+        expected += net[index] * binomial_coefficient(m, i) * std::pow(s, i) *
+                    std::pow(1 - s, m - i) * binomial_coefficient(n, j) * std::pow(t, j) *
+                    std::pow(1 - t, n - j);
       }
     }
     EXPECT_NEAR(bernstein_net_value(net.data(), m, n, s, t), expected, kRoundOff);

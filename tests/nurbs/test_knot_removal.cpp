@@ -362,5 +362,27 @@ TEST(SurfaceKnotRemoval, UndoesInsertionOnOneThousandRandomSurfaces) {
   std::cout << "[ measured ] worst relative deviation " << worst << "\n";
 }
 
+TEST(KnotRemoval, PeriodicKnotsComeOutAgainNotRefused) {
+  // Regression: removal refused every periodic shape ("supports open shapes"). A knot inserted
+  // into the periodic circle is removed again and the circle stays a circle.
+  const NurbsCurve circle = periodic_circle(1.5);
+  const CurveKnotRemoval removal = remove_knot(insert_knot(circle, 0.4), 0.4, 1, kExactRemoval);
+  ASSERT_TRUE(removal.succeeded);
+  EXPECT_EQ(removal.curve.control_point_count(), circle.control_point_count());
+  for (int i = 0; i <= 64; ++i) {
+    // The rational circle evaluates to radius 1.5 to a few ulps.
+    EXPECT_NEAR(removal.curve.point(i / 64.0).norm(), 1.5, 1e-14);
+  }
+  // The circle's own double knots carry its shape: removing one moves it by ~0.1.
+  EXPECT_FALSE(remove_knot(circle, 0.25, 1, 1e-6).succeeded);
+  // The seam, given as the period end 2.3 (the period start 0.3), inserted and removed.
+  const NurbsCurve curve = random_periodic_curve(3, 251U, true);
+  const CurveKnotRemoval seam = remove_knot(insert_knot(curve, 2.3), 2.3, 1, kExactRemoval);
+  ASSERT_TRUE(seam.succeeded);
+  EXPECT_EQ(seam.curve.knots().domain_start(), 0.3);
+  EXPECT_EQ(seam.curve.knots().multiplicity(0.3), 1);
+  EXPECT_LT(max_deviation(curve, seam.curve), kRoundOff);
+}
+
 }  // namespace
 }  // namespace dnurbs
