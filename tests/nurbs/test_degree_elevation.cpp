@@ -200,10 +200,10 @@ TEST(DegreeElevation, KeepsThreeThousandRandomCurves) {
   std::cout << "[ measured ] worst relative deviation " << worst << "\n";
 }
 
-TEST(DegreeElevation, KeepsOneThousandRandomSurfacesInEitherDirection) {
+TEST(DegreeElevation, KeepsTwoThousandRandomSurfacesInEitherDirection) {
   std::mt19937 generator(2002U);
   double worst = 0.0;
-  for (int trial = 0; trial < 1000; ++trial) {
+  for (int trial = 0; trial < 2000; ++trial) {
     const int degree_u = 1 + trial % 7;
     const int degree_v = 1 + (trial / 7) % 4;
     const NurbsSurface surface = testing::random_surface(
