@@ -18,6 +18,7 @@
 
 namespace dnurbs {
 
+/// The nearest point of a curve: its parameter, the point C(parameter) and |C - Q|.
 struct CurveProjection {
   double parameter = 0.0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();

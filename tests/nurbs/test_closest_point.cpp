@@ -70,6 +70,7 @@ TEST(ClosestPoint, CurveRegressionFindsTheGlobalNotALocalMinimum) {
   const double reference =
       testing::brute_force_distance(curve, testing::sample_curve(curve, 256), query);
   EXPECT_NEAR(found.distance, reference, 1e-14);
+  // The values the reference prints, to their last digits.
   EXPECT_NEAR(found.distance, 0.025486050673061, 1e-14);
   EXPECT_NEAR(found.parameter, 0.984418522510566, 1e-12);
   // Stationary there: (C - Q).C' = 0 to round-off (terms |C| |C'| ~ 10, a few ulps each).
@@ -93,6 +94,7 @@ TEST(ClosestPoint, SurfaceRegressionBoundaryMinimumIsStationaryAlongTheEdge) {
   const Eigen::Vector3d query(1.5, 3.5, 2.0);
   const SurfaceProjection found = closest_point(surface, query);
   EXPECT_EQ(found.parameter.y(), 1.0);
+  // The brute-force reference's values (1e-12 in u: the distance is flat there to 2nd order).
   EXPECT_NEAR(found.parameter.x(), 0.5289629413947925, 1e-12);
   EXPECT_NEAR(found.distance, 1.7678030021674385, 1e-14);
   // Stationary along the edge (to round-off of terms ~10), and the distance grows into the
@@ -104,6 +106,7 @@ TEST(ClosestPoint, SurfaceRegressionBoundaryMinimumIsStationaryAlongTheEdge) {
 }
 
 TEST(ClosestPoint, InvertPointGivesTheParametersOfPointsOnTheShape) {
+  // Points evaluated to round-off (1e-16) come back to within that over the speed (~10).
   const NurbsCurve circle = full_circle(2.0);
   EXPECT_NEAR(invert_point(circle, circle.point(0.3), 1e-12), 0.3, 1e-14);
   const NurbsSurface unit_sphere = sphere(1.0);

@@ -39,7 +39,7 @@ TEST(NearestCandidate, BoundsLowerWithoutChangingTheAnswer) {
   best.offer(3.0, 0.2, true);
   best.bound_by(1.0);  // a point of the shape that is not a candidate
   EXPECT_EQ(best.distance, 3.0);
-  EXPECT_NEAR(best.pruning_bound(), 1.0, 1e-12);
+  EXPECT_NEAR(best.pruning_bound(), 1.0, 1e-12);  // the bound times 1 + 1e-13
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ TEST(ProjectionPatch, DerivativesMatchFiniteDifferences) {
     EXPECT_TRUE(near(at.ss, (ds_plus.s - ds_minus.s) / (2 * h))) << trial;
     EXPECT_TRUE(near(at.st, (dt_plus.s - dt_minus.s) / (2 * h))) << trial;
     EXPECT_TRUE(near(at.tt, (dt_plus.t - dt_minus.t) / (2 * h))) << trial;
-    // The corners are the corner control points.
+    // The corners are the corner control points (a weighted sum with one non-zero term: ulps).
     EXPECT_LT((patch.evaluate(1.0, 0.0).point - patch.corner(1)).norm(), 1e-14);
     EXPECT_LT((patch.evaluate(0.0, 1.0).point - patch.corner(2)).norm(), 1e-14);
   }
@@ -91,6 +91,7 @@ TEST(ProjectionPatch, LowerBoundNeverExceedsTheDistanceOfAnyPoint) {
     const double lower = patch.lower_bound(query);
     for (int i = 0; i <= 20; ++i) {
       for (int j = 0; j <= 20; ++j) {
+        // A bound, not an estimate: only the evaluation's ulps may cross it.
         EXPECT_LE(lower, (patch.evaluate(i / 20.0, j / 20.0).point - query).norm() + 1e-15);
       }
     }
@@ -134,7 +135,7 @@ TEST(ProjectionPatch, ReportsStationaryPointsWhereTheGradientVanishes) {
         (edge ? edges : interior) = std::min(edge ? edges : interior, d);
       }
     }
-    EXPECT_LE(std::min(recorder.bound, edges), interior + 1e-15) << trial;
+    EXPECT_LE(std::min(recorder.bound, edges), interior + 1e-15) << trial;  // ulps of a distance
   }
 }
 

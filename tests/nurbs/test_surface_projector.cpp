@@ -143,6 +143,7 @@ TEST(SurfaceProjector, AgreesWithTheSphereAndTheTorus) {
     const double expected =
         std::abs(std::hypot(std::hypot(local.x(), local.y()) - 2.0, local.z()) - 0.5);
     const SurfaceProjection on_torus = torus_projector.closest_point(query);
+    // The rational torus and the formula agree to a few ulps of coordinates of size ~3.
     EXPECT_NEAR(on_torus.distance, expected, 1e-13) << "query " << query.transpose();
     // Periodic directions report parameters in [start, end).
     EXPECT_GE(on_torus.parameter.minCoeff(), 0.0);
@@ -167,7 +168,7 @@ TEST(SurfaceProjector, FindsCornersEdgesAndCreasesExactly) {
   // Above the ridge: the crease u = 1/2 is nearest.
   const SurfaceProjection ridge = projector.closest_point(Eigen::Vector3d(1.5, 1.5, 3.0));
   EXPECT_EQ(ridge.parameter.x(), 0.5);
-  EXPECT_NEAR(ridge.distance, 2.0, 1e-14);
+  EXPECT_NEAR(ridge.distance, 2.0, 1e-14);  // the crease interpolates the row z = 1: ulps
   // Beyond the corner (0, 0): the corner itself.
   const SurfaceProjection corner = projector.closest_point(Eigen::Vector3d(-1.0, -2.0, -0.5));
   EXPECT_EQ(corner.parameter, Eigen::Vector2d(0.0, 0.0));
@@ -176,7 +177,8 @@ TEST(SurfaceProjector, FindsCornersEdgesAndCreasesExactly) {
   EXPECT_EQ(edge.parameter.y(), 1.0);
   // There the nearest edge point is stationary along the edge: (S - Q).S_u = 0.
   const SurfaceDerivatives d = surface.derivatives(edge.parameter.x(), 1.0, 1);
-  EXPECT_NEAR((d(0, 0) - Eigen::Vector3d(0.7, 4.0, 0.0)).dot(d(1, 0)), 0.0, 1e-13);
+  EXPECT_NEAR((d(0, 0) - Eigen::Vector3d(0.7, 4.0, 0.0)).dot(d(1, 0)), 0.0,
+              1e-13);  // round-off of terms |S - Q| |S_u| ~ 10
 }
 
 TEST(SurfaceProjector, TiesGoToTheSmallestParameters) {
@@ -184,7 +186,7 @@ TEST(SurfaceProjector, TiesGoToTheSmallestParameters) {
   const SurfaceProjection centre =
       SurfaceProjector(sphere(1.0)).closest_point(Eigen::Vector3d::Zero());
   EXPECT_EQ(centre.parameter, Eigen::Vector2d(0.0, 0.0));
-  EXPECT_NEAR(centre.distance, 1.0, 1e-15);
+  EXPECT_NEAR(centre.distance, 1.0, 1e-15);  // the pole of the rational sphere, to an ulp
   // On the torus's axis a whole circle is nearest; the smallest (u, v) of it.
   const NurbsSurface torus_surface = periodic_torus(2.0, 0.5);
   const SurfaceProjection axis =
