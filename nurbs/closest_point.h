@@ -1,32 +1,30 @@
 #pragma once
-// Closest-point projection onto NURBS curves and surfaces: a coarse sampling for the start,
-// then Newton's method on the first-order conditions (S - P).Su = (S - P).Sv = 0 with the
-// parameters kept in the domain (Piegl & Tiller section 6.1).
+// Closest-point projection onto NURBS curves and surfaces and point inversion, as one-off calls.
+// Each call builds a CurveProjector or SurfaceProjector (curve_projector.h, surface_projector.h)
+// and runs one query: the globally nearest point, found with a guarantee (convex-hull bounds on
+// Bezier pieces, exact isolation of the stationary points, Newton's method to round-off, ends,
+// boundary curves and corners included). For many queries on one shape, build the projector once.
 
 #include <Eigen/Core>
 
+#include "nurbs/curve_projector.h"
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"
+#include "nurbs/surface_projector.h"
 
 namespace dnurbs {
 
-struct CurveProjection {
-  double parameter = 0.0;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  double distance = 0.0;
-};
-
-struct SurfaceProjection {
-  Eigen::Vector2d parameter = Eigen::Vector2d::Zero();
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  double distance = 0.0;
-};
-
-/// The parameter of the curve point nearest to `point` (samples per non-empty span for the
-/// start, then at most 50 Newton steps to |delta u| <= 1e-15 (domain length)).
+/// The globally nearest point of `curve` to `point`; see CurveProjector::closest_point.
 CurveProjection closest_point(const NurbsCurve& curve, const Eigen::Vector3d& point);
-/// The parameters of the surface point nearest to `point`: damped Newton searches from the 4
-/// nearest of kSamplesPerSpan^2 samples per non-empty span pair, the best result kept.
+/// The globally nearest point of `surface` to `point`; see SurfaceProjector::closest_point.
 SurfaceProjection closest_point(const NurbsSurface& surface, const Eigen::Vector3d& point);
+
+/// Point inversion: the parameter of a point on `curve`, to round-off; throws Error naming the
+/// distance if `point` is farther than `tolerance` (model units) from the curve.
+double invert_point(const NurbsCurve& curve, const Eigen::Vector3d& point, double tolerance);
+/// Point inversion: the parameters (u, v) of a point on `surface`, to round-off; throws Error
+/// naming the distance if `point` is farther than `tolerance` (model units) from the surface.
+Eigen::Vector2d invert_point(const NurbsSurface& surface, const Eigen::Vector3d& point,
+                             double tolerance);
 
 }  // namespace dnurbs

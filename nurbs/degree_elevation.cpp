@@ -4,10 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/LU>
-
-#include "nurbs/basis_functions.h"
 #include "core/error.h"
+#include "nurbs/periodic_window.h"
 
 namespace dnurbs {
 namespace {
@@ -17,14 +15,6 @@ struct ElevatedRows {
   KnotVector knots;
   Eigen::MatrixXd rows;
 };
-
-double binomial(int n, int k) {
-  double value = 1.0;
-  for (int i = 1; i <= k; ++i) {
-    value = value * (n - k + i) / i;
-  }
-  return value;
-}
 
 void check_elevation(const KnotVector& knots, int degree_increase) {
   if (degree_increase < 0) {
@@ -45,203 +35,138 @@ void check_elevation(const KnotVector& knots, int degree_increase) {
   }
 }
 
-// Piegl & Tiller A5.9 on control rows of a clamped knot vector: decompose into Bezier segments
-// on the fly, elevate each, and remove the knots that the decomposition inserted.
-ElevatedRows elevate_open_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {
-  const int p = knots.degree();
-  const std::vector<double>& u = knots.knots();
-  const int n = static_cast<int>(points.rows()) - 1;  // last control point index
-  const int m = n + p + 1;                            // last knot index
-  const int ph = p + t;
-  const int ph2 = ph / 2;
-  const Eigen::Index dim = points.cols();
-  const auto knot = [&](int i) { return u[static_cast<size_t>(i)]; };
-
-  // Bezier degree elevation coefficients.
-  Eigen::MatrixXd bezalfs = Eigen::MatrixXd::Zero(ph + 1, p + 1);
-  bezalfs(0, 0) = 1.0;
-  bezalfs(ph, p) = 1.0;
-  for (int i = 1; i <= ph2; ++i) {
-    const double inverse = 1.0 / binomial(ph, i);
-    for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) {
-      bezalfs(i, j) = inverse * binomial(p, j) * binomial(t, i - j);
-    }
+// Boehm's knot insertion, once (Piegl & Tiller eq. 5.15): the new points are convex
+// combinations of old neighbours, alpha_i = (u - t_i) / (t_{i+p} - t_i) in [0, 1].
+void insert_once(std::vector<double>& knots, Eigen::MatrixXd& points, int p, double u) {
+  const int k =
+      static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) - knots.begin()) - 1;
+  const int s = static_cast<int>(std::count(knots.begin(), knots.end(), u));
+  const auto knot = [&](int i) { return knots[static_cast<size_t>(i)]; };
+  Eigen::MatrixXd inserted(points.rows() + 1, points.cols());
+  inserted.topRows(k - p + 1) = points.topRows(k - p + 1);
+  for (int i = k - p + 1; i <= k - s; ++i) {
+    const double alpha = (u - knot(i)) / (knot(i + p) - knot(i));
+    inserted.row(i) = alpha * points.row(i) + (1.0 - alpha) * points.row(i - 1);
   }
-  for (int i = ph2 + 1; i <= ph - 1; ++i) {
-    for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) {
-      bezalfs(i, j) = bezalfs(ph - i, p - j);
-    }
-  }
-
-  // Every distinct knot gains t copies.
-  int distinct = 1;
-  for (int i = 1; i <= m; ++i) {
-    distinct += knot(i) != knot(i - 1) ? 1 : 0;
-  }
-  const int new_count = n + 1 + t * (distinct - 1);
-  Eigen::MatrixXd q(new_count, dim);
-  std::vector<double> uh(static_cast<size_t>(new_count + ph + 1));
-  const auto new_knot = [&](int i) -> double& { return uh[static_cast<size_t>(i)]; };
-
-  Eigen::MatrixXd bpts = points.topRows(p + 1);
-  Eigen::MatrixXd ebpts(ph + 1, dim);
-  Eigen::MatrixXd next_bpts(std::max(p - 1, 1), dim);
-  std::vector<double> alfs(static_cast<size_t>(std::max(p - 1, 1)));
-
-  int mh = ph;
-  int kind = ph + 1;
-  int r = -1;
-  int a = p;
-  int b = p + 1;
-  int cind = 1;
-  double ua = knot(0);
-  q.row(0) = points.row(0);
-  for (int i = 0; i <= ph; ++i) {
-    new_knot(i) = ua;
-  }
-  while (b < m) {
-    const int start = b;
-    while (b < m && knot(b) == knot(b + 1)) {
-      ++b;
-    }
-    const int mul = b - start + 1;
-    mh += mul + t;
-    const double ub = knot(b);
-    const int oldr = r;
-    r = p - mul;
-    const int lbz = oldr > 0 ? (oldr + 2) / 2 : 1;
-    const int rbz = r > 0 ? ph - (r + 1) / 2 : ph;
-    // Insert ub r times to get the Bezier segment [ua, ub].
-    if (r > 0) {
-      const double numer = ub - ua;
-      for (int k = p; k > mul; --k) {
-        alfs[static_cast<size_t>(k - mul - 1)] = numer / (knot(a + k) - ua);
-      }
-      for (int j = 1; j <= r; ++j) {
-        const int save = r - j;
-        const int s = mul + j;
-        for (int k = p; k >= s; --k) {
-          const double alpha = alfs[static_cast<size_t>(k - s)];
-          bpts.row(k) = alpha * bpts.row(k) + (1.0 - alpha) * bpts.row(k - 1);
-        }
-        next_bpts.row(save) = bpts.row(p);
-      }
-    }
-    // Degree-elevate the Bezier segment (only points lbz..ph are used below).
-    for (int i = lbz; i <= ph; ++i) {
-      ebpts.row(i).setZero();
-      for (int j = std::max(0, i - t); j <= std::min(p, i); ++j) {
-        ebpts.row(i) += bezalfs(i, j) * bpts.row(j);
-      }
-    }
-    // Remove the knot ua oldr times.
-    if (oldr > 1) {
-      int first = kind - 2;
-      int last = kind;
-      const double den = ub - ua;
-      const double bet = (ub - new_knot(kind - 1)) / den;
-      for (int tr = 1; tr < oldr; ++tr) {
-        int i = first;
-        int j = last;
-        int kj = j - kind + 1;
-        while (j - i > tr) {
-          if (i < cind) {
-            const double alf = (ub - new_knot(i)) / (ua - new_knot(i));
-            q.row(i) = alf * q.row(i) + (1.0 - alf) * q.row(i - 1);
-          }
-          if (j >= lbz) {
-            if (j - tr <= kind - ph + oldr) {
-              const double gam = (ub - new_knot(j - tr)) / den;
-              ebpts.row(kj) = gam * ebpts.row(kj) + (1.0 - gam) * ebpts.row(kj + 1);
-            } else {
-              ebpts.row(kj) = bet * ebpts.row(kj) + (1.0 - bet) * ebpts.row(kj + 1);
-            }
-          }
-          ++i;
-          --j;
-          --kj;
-        }
-        --first;
-        ++last;
-      }
-    }
-    // Load the knot ua and the control points of this segment.
-    if (a != p) {
-      for (int i = 0; i < ph - oldr; ++i) {
-        new_knot(kind) = ua;
-        ++kind;
-      }
-    }
-    for (int j = lbz; j <= rbz; ++j) {
-      q.row(cind) = ebpts.row(j);
-      ++cind;
-    }
-    if (b < m) {
-      // Set up the next segment.
-      for (int j = 0; j < r; ++j) {
-        bpts.row(j) = next_bpts.row(j);
-      }
-      for (int j = r; j <= p; ++j) {
-        bpts.row(j) = points.row(b - p + j);
-      }
-      a = b;
-      ++b;
-      ua = ub;
-    } else {
-      for (int i = 0; i <= ph; ++i) {
-        new_knot(kind + i) = ub;
-      }
-    }
-  }
-  const int count = mh - ph;  // P&T: nh = mh - ph - 1 is the last index
-  if (count != new_count) {
-    throw make_error("degree elevation produced ", count, " control points instead of ", new_count);
-  }
-  return {KnotVector(ph, std::move(uh)), std::move(q)};
+  inserted.bottomRows(points.rows() - (k - s)) = points.bottomRows(points.rows() - (k - s));
+  knots.insert(knots.begin() + k + 1, u);
+  points = std::move(inserted);
 }
 
-// Periodic curves: the elevated curve lies in the periodic spline space of degree p + t whose
-// knots are the old distinct knots with multiplicity + t; its control points solve the
-// collocation system at the Greville abscissae of that basis.
-ElevatedRows elevate_periodic_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {
-  const int p = knots.degree();
-  const int n = knots.control_point_count();
-  std::vector<double> period;
-  for (int i = p; i < p + n; ++i) {
-    if (i > p && knots[i] == knots[i - 1]) {
+// The blossom of the degree-p spline (knots t, control rows P) at the sorted knots S (p values
+// that contain every knot strictly between S's ends at least as often as t does): the knots of S
+// that t lacks are inserted (Boehm, convex) into a local copy until S is a run of consecutive
+// knots t*_{a+1..a+p}; then b(S) = P*_a (Ramshaw, Blossoms are polar forms, CAGD 6, 1989).
+Eigen::RowVectorXd blossom_at_knots(const std::vector<double>& t, const Eigen::MatrixXd& points,
+                                    int p, const std::vector<double>& sorted) {
+  const int m = static_cast<int>(t.size()) - 1;
+  const double low = sorted.front();
+  const double high = sorted.back();
+  const auto first_of = [](const std::vector<double>& knots, double value) {
+    return static_cast<int>(std::lower_bound(knots.begin(), knots.end(), value) - knots.begin());
+  };
+  const auto count_of = [](const std::vector<double>& knots, double value) {
+    const auto range = std::equal_range(knots.begin(), knots.end(), value);
+    return static_cast<int>(range.second - range.first);
+  };
+  // Local copy: knots t_L..t_R and the control points whose knots lie in it.
+  const int left = std::max(0, first_of(t, low) - p - 1);
+  const int right = std::min(m, first_of(t, high) + count_of(t, high) + p);
+  std::vector<double> knots(t.begin() + left, t.begin() + right + 1);
+  Eigen::MatrixXd local = points.middleRows(left, right - p - left);
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    if (i > 0 && sorted[i] == sorted[i - 1]) {
       continue;
     }
-    const int multiplicity = knots.multiplicity(knots[i]);
-    period.insert(period.end(), static_cast<size_t>(multiplicity) + static_cast<size_t>(t),
-                  knots[i]);
+    const int needed = count_of(sorted, sorted[i]);
+    for (int missing = needed - count_of(knots, sorted[i]); missing > 0; --missing) {
+      insert_once(knots, local, p, sorted[i]);
+    }
   }
-  period.push_back(knots.domain_end());
-  KnotVector elevated = KnotVector::periodic(p + t, period);
-  const int ph = p + t;
-  const int count = elevated.control_point_count();
+  // The run: the last copies of `low` that S holds, the knots between, the first copies of
+  // `high`. S of p equal knots takes the first p copies (the last p at the clamped start).
+  const int first = first_of(knots, low);
+  const int a = low == high ? std::max(first - 1, 0)
+                            : first + count_of(knots, low) - count_of(sorted, low) - 1;
+  return local.row(a);
+}
 
-  Eigen::MatrixXd collocation = Eigen::MatrixXd::Zero(count, count);
-  Eigen::MatrixXd values = Eigen::MatrixXd::Zero(count, points.cols());
-  BasisValues basis;
+// Degree p -> p + 1 on a clamped knot vector (every distinct knot gains a copy). The coefficient
+// of the new basis function j is the degree-raised blossom at its interior knots
+// x = t'_{j+1..j+p+1}: the mean of the old blossom over the p + 1 ways of leaving one of them out
+// (Ramshaw 1989; Prautzsch, Degree elevation of B-spline curves, CAGD 1, 1984). Every blossom is
+// made of Boehm insertions, so each new point is a convex combination of old ones: the result
+// is accurate to round-off whatever the knot spacing (unlike A5.9's knot removal step, whose
+// divisions lose digits when knots nearly coincide).
+ElevatedRows elevate_once(const KnotVector& knots, const Eigen::MatrixXd& points) {
+  const int p = knots.degree();
+  const std::vector<double>& t = knots.knots();
+  std::vector<double> raised;
+  raised.reserve(2 * t.size());
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (i == 0 || t[i] != t[i - 1]) {
+      raised.push_back(t[i]);
+    }
+    raised.push_back(t[i]);
+  }
+  const int count = static_cast<int>(raised.size()) - p - 2;
+  Eigen::MatrixXd elevated = Eigen::MatrixXd::Zero(count, points.cols());
+  std::vector<double> subset(static_cast<size_t>(p));
   for (int j = 0; j < count; ++j) {
-    double greville = 0.0;
-    for (int i = 1; i <= ph; ++i) {
-      greville += elevated[j + i];
-    }
-    const double tau = elevated.to_domain(greville / ph);
-    const int new_span = elevated.find_span(tau);
-    basis_functions(elevated, new_span, tau, basis);
-    for (int c = 0; c <= ph; ++c) {
-      collocation(j, elevated.control_point_index(new_span, c)) += basis[c];
-    }
-    const int old_span = knots.find_span(tau);
-    basis_functions(knots, old_span, tau, basis);
-    for (int c = 0; c <= p; ++c) {
-      values.row(j) += basis[c] * points.row(knots.control_point_index(old_span, c));
+    const auto interior = raised.begin() + j + 1;
+    Eigen::RowVectorXd blossom;
+    for (int left_out = 0; left_out <= p; ++left_out) {
+      // Leaving out equal knots gives the same blossom.
+      if (left_out == 0 || interior[left_out] != interior[left_out - 1]) {
+        std::copy(interior, interior + left_out, subset.begin());
+        std::copy(interior + left_out + 1, interior + p + 1, subset.begin() + left_out);
+        blossom = blossom_at_knots(t, points, p, subset);
+      }
+      elevated.row(j) += blossom;
     }
   }
-  Eigen::MatrixXd new_points = collocation.partialPivLu().solve(values);
-  return {std::move(elevated), std::move(new_points)};
+  elevated /= p + 1;
+  return {KnotVector(p + 1, std::move(raised)), std::move(elevated)};
+}
+
+// Raises a clamped B-spline by t degrees, one at a time.
+ElevatedRows elevate_open_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {
+  ElevatedRows result{knots, points};
+  for (int step = 0; step < t; ++step) {
+    result = elevate_once(result.knots, result.rows);
+  }
+  return result;
+}
+
+// Periodic curves: the period's knots with every distinct knot raised by t (the seam by t copies
+// at the start of the list, so that its multiplicity across the wrap grows by t).
+KnotVector elevated_periodic_knots(const KnotVector& knots, int t) {
+  const std::vector<double> period = knots.period_knots();
+  std::vector<double> elevated;
+  elevated.reserve(period.size() * static_cast<size_t>(t + 1));
+  for (size_t i = 0; i + 1 < period.size(); ++i) {
+    const bool seam_copy_at_end = period[i] == period.back();
+    if ((i == 0 || period[i] != period[i - 1]) && !seam_copy_at_end) {
+      elevated.insert(elevated.end(), static_cast<size_t>(t), period[i]);
+    }
+    elevated.push_back(period[i]);
+  }
+  elevated.push_back(period.back());
+  return KnotVector::periodic(knots.degree() + t, elevated);
+}
+
+// Periodic curves: three periods [t_p - T, t_{p+n} + T] of the bi-infinite spline as an open
+// curve, clamped at both ends and elevated (elevate_open_rows); the middle of the result is the
+// elevated periodic spline, whose control points are read off by matching knots (wrap_periodic).
+ElevatedRows elevate_periodic_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {
+  const int n = knots.control_point_count();
+  const KnotsAndRows window =
+      clamp_window(unwrap_periodic(knots, points, -n, 3 * n + knots.degree()));
+  ElevatedRows elevated = elevate_open_rows(window.knots, window.rows, t);
+  KnotVector target = elevated_periodic_knots(knots, t);
+  Eigen::MatrixXd rows =
+      wrap_periodic({std::move(elevated.knots), std::move(elevated.rows)}, target);
+  return {std::move(target), std::move(rows)};
 }
 
 ElevatedRows elevate_rows(const KnotVector& knots, const Eigen::MatrixXd& points, int t) {

@@ -9,12 +9,6 @@
 namespace dnurbs {
 namespace {
 
-/// A knot vector with the control rows it goes with.
-struct KnotsAndRows {
-  KnotVector knots;
-  Eigen::MatrixXd rows;
-};
-
 int count_index(Eigen::Index index) {
   return static_cast<int>(index);
 }
@@ -52,7 +46,9 @@ KnotsAndRows insert_knot_rows(const KnotVector& knots, const Eigen::MatrixXd& po
     throw make_error("knot ", u, " to insert is not finite");
   }
   if (periodic) {
-    u = knots.to_domain(u);
+    // The seam given as the period end t_{p+n} (or within round-off of either end) is the knot
+    // t_p: inserting it there keeps the period list's start and every index in range.
+    u = knots.wrap_to_period(u);
   } else if (!(u >= knots.domain_start() && u <= knots.domain_end())) {
     throw make_error("knot ", u, " to insert is outside the domain [", knots.domain_start(), ", ",
                      knots.domain_end(), "]");
@@ -298,6 +294,15 @@ NurbsSurface surface_from_control_rows(const NurbsSurface& surface, SurfaceDirec
     }
   }
   return {std::move(knots_u), std::move(knots_v), std::move(points), std::move(weights)};
+}
+
+KnotsAndRows refine_control_rows(const KnotVector& knots, const Eigen::MatrixXd& rows,
+                                 const std::vector<double>& new_knots) {
+  check_refinement(knots, new_knots);
+  if (new_knots.empty()) {
+    return {knots, rows};
+  }
+  return refine_knot_rows(knots, rows, new_knots);
 }
 
 NurbsCurve insert_knot(const NurbsCurve& curve, double u, int times) {

@@ -47,10 +47,23 @@ NurbsCurve curve_from_control_rows(KnotVector knots, const ControlRows& rows);
 NurbsSurface surface_from_control_rows(const NurbsSurface& surface, SurfaceDirection direction,
                                        KnotVector knots, const ControlRows& rows);
 
+/// A knot vector with the control rows that go with it (knots.control_point_count() rows).
+struct KnotsAndRows {
+  KnotVector knots;
+  Eigen::MatrixXd rows;
+};
+
+/// refine_knots on control rows: `rows` is knots.control_point_count() by #columns (any
+/// columns: points, homogeneous points or whole rows of a net). Returns the refined knot vector
+/// and rows. Throws Error like refine_knots.
+KnotsAndRows refine_control_rows(const KnotVector& knots, const Eigen::MatrixXd& rows,
+                                 const std::vector<double>& new_knots);
+
 /// Piegl & Tiller A5.1: inserts the knot u `times` times; the curve does not change.
 ///
 /// Open curves: u must lie in the domain [t_p, t_{m-p}]; the result has n + times control points.
-/// Periodic curves: u wraps into the period; the cyclic control polygon of n points gets
+/// Periodic curves: u wraps into the period (KnotVector::wrap_to_period, so the seam given as
+/// the period end t_{p+n} is inserted as the knot t_p); the cyclic control polygon of n points gets
 /// n + times points (for one insertion the p - 1 points P_{k-p+1}..P_{k-1}, indices mod n, of the
 /// span k containing u are replaced by p new ones) and the knot vector is
 /// KnotVector::periodic(p, period knots with u inserted).

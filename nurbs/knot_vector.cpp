@@ -8,6 +8,12 @@
 namespace dnurbs {
 namespace {
 
+// Element i (an int index) of a std::array or std::vector.
+template <typename Container>
+auto& at(Container& container, int i) {
+  return container[static_cast<size_t>(i)];
+}
+
 void check_degree(int degree) {
   if (degree < 1 || degree > kMaxDegree) {
     throw make_error("degree ", degree, " is outside 1..", kMaxDegree);
@@ -36,24 +42,71 @@ KnotVector::KnotVector(PeriodicTag, int degree, const std::vector<double>& perio
       throw make_error("period knot ", i, " is not finite (", period_knots[i], ")");
     }
   }
-  const double period = period_knots.back() - period_knots.front();
-  if (!(period > 0.0)) {
-    throw make_error("periodic knots must span a positive period, got [", period_knots.front(),
-                     ", ", period_knots.back(), "]");
+  const double start = period_knots.front();
+  const double end = period_knots.back();
+  if (!(end - start > 0.0)) {
+    throw make_error("periodic knots must span a positive period, got [", start, ", ", end, "]");
+  }
+  // Snap knots within the seam tolerance onto the period start or end: a list whose wrapped
+  // copies were computed as t_{i+n} - T carries round-off there that is not a real knot.
+  const double tolerance =
+      kPeriodicSeamTolerance * std::max({std::abs(start), std::abs(end), end - start});
+  std::vector<double> period = period_knots;
+  for (int i = 1; i < n; ++i) {
+    double& knot = period[static_cast<size_t>(i)];
+    if (std::abs(knot - start) <= tolerance) {
+      knot = start;
+    } else if (std::abs(knot - end) <= tolerance) {
+      knot = end;
+    }
+    if (knot < at(period, i - 1)) {
+      throw make_error("period knots decrease at index ", i, ": ", at(period, i - 1), " > ", knot);
+    }
+  }
+  if (at(period, n - 1) > end) {
+    throw make_error("period knots decrease at index ", n, ": ", at(period, n - 1), " > ", end);
   }
   control_point_count_ = n;
-  // Extend one period by p knots on each side with the same spacing: t_{i+n} = t_i + T.
-  knots_.resize(static_cast<size_t>(n + 2 * degree + 1));
+  knots_.resize(static_cast<size_t>(n) + 2 * static_cast<size_t>(degree) + 1);
   for (int i = 0; i <= n; ++i) {
-    knots_[static_cast<size_t>(degree + i)] = period_knots[static_cast<size_t>(i)];
+    at(knots_, degree + i) = period[static_cast<size_t>(i)];
   }
-  for (int i = degree - 1; i >= 0; --i) {
-    knots_[static_cast<size_t>(i)] = knots_[static_cast<size_t>(i + n)] - period;
-  }
-  for (int i = degree + n + 1; i < n + 2 * degree + 1; ++i) {
-    knots_[static_cast<size_t>(i)] = knots_[static_cast<size_t>(i - n)] + period;
+  // Extend one period by p knots on each side with the same spacing, t_{i+n} = t_i + T, the seam
+  // copies exactly t_p - T and t_{p+n} (shifted_period_knot).
+  for (int i = 0; i < degree; ++i) {
+    knots_[static_cast<size_t>(i)] = shifted_period_knot(at(period, i + n - degree), -1);
+    at(knots_, degree + n + 1 + i) = shifted_period_knot(at(period, i + 1), 1);
   }
   validate();
+}
+
+double KnotVector::shifted_period_knot(double x, int periods) const {
+  const double start = knots_[static_cast<size_t>(degree_)];
+  const double end = at(knots_, degree_ + control_point_count_);
+  const double period = end - start;
+  // The copies of the seam: period k starts at t_p + k T (exactly t_{p+n} for k = 1).
+  const auto seam = [&](int k) { return k == 0 ? start : k == 1 ? end : start + k * period; };
+  if (x == start) {
+    return seam(periods);
+  }
+  if (x == end) {
+    return seam(periods + 1);
+  }
+  return x + periods * period;
+}
+
+double KnotVector::extended_knot(int i) const {
+  if (!periodic_) {
+    if (i < 0 || i >= size()) {
+      throw make_error("knot index ", i, " is outside 0..", size() - 1);
+    }
+    return knots_[static_cast<size_t>(i)];
+  }
+  const int n = control_point_count_;
+  const int offset = i - degree_;
+  const int periods = offset >= 0 ? offset / n : -((-offset + n - 1) / n);
+  const int m = offset - periods * n;
+  return shifted_period_knot(at(knots_, degree_ + m), periods);
 }
 
 void KnotVector::validate() const {
@@ -67,9 +120,9 @@ void KnotVector::validate() const {
     if (!std::isfinite(knots_[static_cast<size_t>(i)])) {
       throw make_error("knot ", i, " is not finite (", knots_[static_cast<size_t>(i)], ")");
     }
-    if (i > 0 && knots_[static_cast<size_t>(i)] < knots_[static_cast<size_t>(i - 1)]) {
-      throw make_error("knot vector decreases at index ", i, ": ",
-                       knots_[static_cast<size_t>(i - 1)], " > ", knots_[static_cast<size_t>(i)]);
+    if (i > 0 && knots_[static_cast<size_t>(i)] < at(knots_, i - 1)) {
+      throw make_error("knot vector decreases at index ", i, ": ", at(knots_, i - 1), " > ",
+                       knots_[static_cast<size_t>(i)]);
     }
   }
   if (!(domain_end() > domain_start())) {
@@ -78,7 +131,7 @@ void KnotVector::validate() const {
   // Multiplicities: at most p inside the domain, at most p + 1 at the ends.
   for (int i = 0; i < count;) {
     int j = i;
-    while (j + 1 < count && knots_[static_cast<size_t>(j + 1)] == knots_[static_cast<size_t>(i)]) {
+    while (j + 1 < count && at(knots_, j + 1) == knots_[static_cast<size_t>(i)]) {
       ++j;
     }
     const int multiplicity = j - i + 1;
@@ -190,12 +243,24 @@ double KnotVector::to_domain(double u) const {
   return std::clamp(u, start, end);
 }
 
+double KnotVector::wrap_to_period(double u) const {
+  const double wrapped = to_domain(u);
+  if (!periodic_) {
+    return wrapped;
+  }
+  const double start = domain_start();
+  const double end = domain_end();
+  const double tolerance =
+      kPeriodicSeamTolerance * std::max({std::abs(start), std::abs(end), end - start});
+  return wrapped - start <= tolerance || end - wrapped <= tolerance ? start : wrapped;
+}
+
 int KnotVector::find_span(double u) const {
   u = to_domain(u);
   const int last = basis_count() - 1;
   if (u >= domain_end()) {
     int k = last;
-    while (knots_[static_cast<size_t>(k)] >= knots_[static_cast<size_t>(k + 1)]) {
+    while (knots_[static_cast<size_t>(k)] >= at(knots_, k + 1)) {
       --k;
     }
     return k;
@@ -215,7 +280,7 @@ int KnotVector::multiplicity(double u) const {
 std::vector<int> KnotVector::non_empty_spans() const {
   std::vector<int> spans;
   for (int k = degree_; k < basis_count(); ++k) {
-    if (knots_[static_cast<size_t>(k)] < knots_[static_cast<size_t>(k + 1)]) {
+    if (knots_[static_cast<size_t>(k)] < at(knots_, k + 1)) {
       spans.push_back(k);
     }
   }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 
-#include "nurbs/basis_functions.h"
 #include "core/error.h"
+#include "nurbs/basis_functions.h"
 
 namespace dnurbs {
 namespace {

@@ -14,13 +14,15 @@ if [ "${1:-}" = "--quick" ]; then
 fi
 
 "${root}/scripts/install_dependencies.sh"
-# OpenCASCADE data for the evaluation comparison: optional.
+# OpenCASCADE for the evaluation and closest-point comparisons: optional. Geom (TKG3d) is in
+# modeling-data; GeomAPI_ProjectPointOnCurve/_OnSurf (TKGeomAlgo) in modeling-algorithms.
 sudo_prefix=""
 if [ "$(id -u)" -ne 0 ]; then
   sudo_prefix="sudo"
 fi
-${sudo_prefix} apt-get install -y libocct-modeling-data-dev >/dev/null 2>&1 ||
-  echo "bench.sh: libocct-modeling-data-dev not available; evaluation runs without OCCT"
+${sudo_prefix} apt-get install -y libocct-modeling-data-dev libocct-modeling-algorithms-dev \
+  >/dev/null 2>&1 ||
+  echo "bench.sh: OCCT packages not available; evaluation and closest-point benches run without OCCT"
 
 launcher=()
 if command -v ccache >/dev/null 2>&1; then
@@ -29,7 +31,7 @@ fi
 cmake -S "${root}" -B "${build}" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 jobs="$(nproc)"
 cmake --build "${build}" --target dnurbs_bench -j"${jobs}"
-for optional in evaluation_bench test_hardcase; do
+for optional in evaluation_bench closest_point_bench test_hardcase; do
   cmake --build "${build}" --target "${optional}" -j"${jobs}" >/dev/null 2>&1 ||
     echo "bench.sh: target ${optional} not built (absent or failing); its table is skipped"
 done
@@ -43,6 +45,10 @@ status=0
 evaluation="$(find "${build}/bench" -maxdepth 3 -type f -name evaluation_bench -perm -u+x | head -n 1)"
 if [ -n "${evaluation}" ]; then
   "${evaluation}" --out "${data}" || { status=$?; echo "bench.sh: evaluation_bench failed"; }
+fi
+closest="$(find "${build}/bench" -maxdepth 3 -type f -name closest_point_bench -perm -u+x | head -n 1)"
+if [ -n "${closest}" ]; then
+  "${closest}" --out "${data}" || { status=$?; echo "bench.sh: closest_point_bench missed minima"; }
 fi
 hardcase="$(find "${build}/tests" -maxdepth 3 -type f -name test_hardcase -perm -u+x | head -n 1)"
 if [ -n "${hardcase}" ]; then

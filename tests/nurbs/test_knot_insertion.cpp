@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "tests/common/error_message.h"
 #include "tests/nurbs/knot_operation_shapes.h"
+#include "tests/nurbs/random_shapes.h"
 
 #include "core/error.h"
 #include "nurbs/primitive_shapes.h"
@@ -285,6 +287,133 @@ TEST(SurfaceKnotRefinement, LeavesSurfacesUnchangedInUAndV) {
               HasSubstr("2.5"));
   EXPECT_THAT(error_message([&] { insert_knot(surface, SurfaceDirection::kU, -0.75); }),
               HasSubstr("-0.75"));
+}
+
+// Property tests: the shape before and after, compared at 65 parameters and every knot,
+// relative to the control net's size. Insertion is a chain of convex combinations of the
+// homogeneous points (weights 0.05..20, so w P up to 20): the measured worst case is ~1e-15.
+constexpr double kShapeTolerance = 1e-12;
+
+TEST(KnotInsertion, SeamGivenAsThePeriodEndKeepsTheCurve) {
+  // Regression: inserting t_{p+n} into a curve whose seam has multiplicity 2 threw
+  // vector::_M_range_insert (the index past the period list), multiplicity 1 gave a list that
+  // "decreases".
+  for (int seam = 1; seam <= 3; ++seam) {
+    std::mt19937 generator(500U + seam);
+    testing::RandomKnotOptions options;
+    options.periodic = true;
+    options.seam_multiplicity = seam;
+    const NurbsCurve curve = testing::random_curve(4, options, true, generator);
+    const double end = curve.knots().domain_end();
+    const NurbsCurve refined = insert_knot(curve, end, 4 - seam);
+    EXPECT_EQ(refined.knots().multiplicity(curve.knots().domain_start()), 4);
+    EXPECT_EQ(refined.knots().domain_start(), curve.knots().domain_start());
+    EXPECT_EQ(refined.knots().domain_end(), end);
+    EXPECT_LT(testing::relative_deviation(curve, refined), kShapeTolerance) << "seam " << seam;
+  }
+}
+
+TEST(KnotInsertion, KeepsThreeThousandRandomCurves) {
+  std::mt19937 generator(1001U);
+  double worst = 0.0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int degree = 1 + trial % 7;
+    const testing::RandomKnotOptions options = testing::trial_options(trial, degree, true);
+    const NurbsCurve curve =
+        testing::random_curve(degree, options, (trial / 7) % 2 == 1, generator);
+    const double u = testing::random_knot_to_insert(curve.knots(), generator);
+    const int existing = curve.knots().multiplicity(curve.knots().wrap_to_period(u));
+    const int times = testing::random_int(generator, 1, degree - existing);
+    const NurbsCurve refined = insert_knot(curve, u, times);
+    ASSERT_EQ(refined.control_point_count(), curve.control_point_count() + times);
+    EXPECT_EQ(refined.knots().multiplicity(refined.knots().wrap_to_period(u)), existing + times);
+    const double deviation = testing::relative_deviation(curve, refined);
+    worst = std::max(worst, deviation);
+    EXPECT_LT(deviation, kShapeTolerance) << "trial " << trial << " u " << u;
+  }
+  std::cout << "[ measured ] worst relative deviation " << worst << "\n";
+}
+
+TEST(KnotRefinement, KeepsThreeThousandRandomCurves) {
+  std::mt19937 generator(1002U);
+  double worst = 0.0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int degree = 1 + trial % 7;
+    const testing::RandomKnotOptions options = testing::trial_options(trial, degree, true);
+    const NurbsCurve curve =
+        testing::random_curve(degree, options, (trial / 7) % 2 == 1, generator);
+    // Up to 6 knots, each kept only while the multiplicities stay within the degree.
+    std::vector<double> new_knots;
+    for (int k = testing::random_int(generator, 1, 6); k > 0; --k) {
+      const double u =
+          curve.knots().wrap_to_period(testing::random_knot_to_insert(curve.knots(), generator));
+      const int added = static_cast<int>(std::count(new_knots.begin(), new_knots.end(), u));
+      if (curve.knots().multiplicity(u) + added < degree) {
+        new_knots.push_back(u);
+      }
+    }
+    std::sort(new_knots.begin(), new_knots.end());
+    const NurbsCurve refined = refine_knots(curve, new_knots);
+    ASSERT_EQ(refined.control_point_count(),
+              curve.control_point_count() + static_cast<int>(new_knots.size()));
+    const double deviation = testing::relative_deviation(curve, refined);
+    worst = std::max(worst, deviation);
+    EXPECT_LT(deviation, kShapeTolerance) << "trial " << trial;
+  }
+  std::cout << "[ measured ] worst relative deviation " << worst << "\n";
+}
+
+TEST(SurfaceKnotInsertion, KeepsTwoThousandRandomSurfacesInEitherDirection) {
+  std::mt19937 generator(1003U);
+  double worst = 0.0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int degree_u = 1 + trial % 7;
+    const int degree_v = 1 + (trial / 7) % 4;
+    const NurbsSurface surface = testing::random_surface(
+        degree_u, degree_v, testing::trial_options(trial, degree_u, true),
+        testing::trial_options(trial / 2, degree_v, true), trial % 3 != 0, generator);
+    const SurfaceDirection direction = trial % 5 < 3 ? SurfaceDirection::kU : SurfaceDirection::kV;
+    const KnotVector& knots =
+        direction == SurfaceDirection::kU ? surface.knots_u() : surface.knots_v();
+    const double u = testing::random_knot_to_insert(knots, generator);
+    const int times = testing::random_int(
+        generator, 1, knots.degree() - knots.multiplicity(knots.wrap_to_period(u)));
+    const NurbsSurface refined = insert_knot(surface, direction, u, times);
+    const double deviation = testing::relative_deviation(surface, refined);
+    worst = std::max(worst, deviation);
+    EXPECT_LT(deviation, kShapeTolerance) << "trial " << trial << " u " << u;
+  }
+  std::cout << "[ measured ] worst relative deviation " << worst << "\n";
+}
+
+TEST(SurfaceKnotRefinement, KeepsOneThousandRandomSurfacesInEitherDirection) {
+  std::mt19937 generator(1004U);
+  double worst = 0.0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const int degree_u = 1 + trial % 7;
+    const int degree_v = 1 + (trial / 7) % 4;
+    const NurbsSurface surface = testing::random_surface(
+        degree_u, degree_v, testing::trial_options(trial, degree_u, true),
+        testing::trial_options(trial / 2, degree_v, true), trial % 3 != 0, generator);
+    const SurfaceDirection direction = trial % 5 < 3 ? SurfaceDirection::kU : SurfaceDirection::kV;
+    const KnotVector& knots =
+        direction == SurfaceDirection::kU ? surface.knots_u() : surface.knots_v();
+    // Up to 4 knots (the seam among them), each kept while multiplicities stay within degree.
+    std::vector<double> new_knots;
+    for (int k = testing::random_int(generator, 1, 4); k > 0; --k) {
+      const double u = knots.wrap_to_period(testing::random_knot_to_insert(knots, generator));
+      const int added = static_cast<int>(std::count(new_knots.begin(), new_knots.end(), u));
+      if (knots.multiplicity(u) + added < knots.degree()) {
+        new_knots.push_back(u);
+      }
+    }
+    std::sort(new_knots.begin(), new_knots.end());
+    const NurbsSurface refined = refine_knots(surface, direction, new_knots);
+    const double deviation = testing::relative_deviation(surface, refined);
+    worst = std::max(worst, deviation);
+    EXPECT_LT(deviation, kShapeTolerance) << "trial " << trial;
+  }
+  std::cout << "[ measured ] worst relative deviation " << worst << "\n";
 }
 
 }  // namespace
