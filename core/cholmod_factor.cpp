@@ -323,6 +323,8 @@ void CholmodFactor::State::solve_simplicial(Eigen::Ref<Eigen::MatrixXd> b) {
   b = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(found->x->x), b.rows(), k);
 }
 
+// A writable Eigen::Ref is a view: passed by value, as Eigen documents.
+// NOLINTNEXTLINE(performance-unnecessary-value-param)
 void CholmodFactor::solve_in_place(Eigen::Ref<Eigen::MatrixXd> b) {
   State& s = *state_;
   if (!s.factored) {

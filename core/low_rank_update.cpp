@@ -249,6 +249,8 @@ double LowRankUpdate::u_dot(const Term& term, const double* column) const {
   return sum;
 }
 
+// A writable Eigen::Ref is a view: passed by value, as Eigen documents.
+// NOLINTNEXTLINE(performance-unnecessary-value-param)
 void LowRankUpdate::solve_in_place(Eigen::Ref<Eigen::MatrixXd> b) {
   if (!factored_) {
     throw make_error("low-rank update: solve before factorize");

@@ -79,7 +79,7 @@ SpringBasis spring_basis(const SheetMatrix& sheet, double u, double v) {
   basis_functions(sheet.knots, span_v, v, nv);
   for (int a = 0; a <= 3; ++a) {
     for (int b = 0; b <= 3; ++b) {
-      const auto p = static_cast<size_t>(4 * a + b);
+      const size_t p = 4 * static_cast<size_t>(a) + static_cast<size_t>(b);
       basis.rows[p] = (span_u - 3 + a) * sheet.side + (span_v - 3 + b);
       basis.values[p] = nu[a] * nv[b];
     }

@@ -68,6 +68,7 @@ std::vector<double> time_interleaved(const std::vector<Operation>& operations, d
     }
   }
   std::vector<double> medians;
+  medians.reserve(samples.size());
   for (const std::vector<double>& s : samples) {
     medians.push_back(median(s));
   }

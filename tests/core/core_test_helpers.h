@@ -31,9 +31,9 @@ inline SparseMatrix banded_toeplitz(int size, const double (&c)[4]) {
 // |i - j| = 0..3. A = mass M(x)M + (K1(x)M + M(x)K1) + bending (K2(x)M + 2 K1(x)K1 + M(x)K2): a
 // D-NURBS step matrix M/dt^2 + K with the 49-entry pattern of a bicubic tensor-product basis.
 inline SparseMatrix sheet_matrix(int side, double mass = 100.0, double bending = 1e-2) {
-  const double kMass[4] = {151.0 / 315.0, 397.0 / 1680.0, 1.0 / 42.0, 1.0 / 5040.0};
-  const double kFirst[4] = {2.0 / 3.0, -1.0 / 8.0, -1.0 / 5.0, -1.0 / 120.0};
-  const double kSecond[4] = {8.0 / 3.0, -3.0 / 2.0, 0.0, 1.0 / 6.0};
+  constexpr double kMass[4] = {151.0 / 315.0, 397.0 / 1680.0, 1.0 / 42.0, 1.0 / 5040.0};
+  constexpr double kFirst[4] = {2.0 / 3.0, -1.0 / 8.0, -1.0 / 5.0, -1.0 / 120.0};
+  constexpr double kSecond[4] = {8.0 / 3.0, -3.0 / 2.0, 0.0, 1.0 / 6.0};
   const SparseMatrix m = banded_toeplitz(side, kMass);
   const SparseMatrix k1 = banded_toeplitz(side, kFirst);
   const SparseMatrix k2 = banded_toeplitz(side, kSecond);
