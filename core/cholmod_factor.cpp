@@ -36,8 +36,9 @@ namespace {
 // Debian's libcholmod is built with OpenMP and some loops of its supernodal factorization carry
 // "num_threads(CHOLMOD_OMP_NUM_THREADS)" (4), which OMP_NUM_THREADS and omp_set_num_threads do
 // not override: every factorization wakes 3 extra libgomp threads that then spin. Measured by
-// bench/solver on the 2-core machine, this made the factorization 2-6x slower than with
-// OMP_THREAD_LIMIT=1 (1e4 unknowns: 80-158 ms against 40 ms). Setting max-active-levels to 0
+// bench/solver on the 2-core machine, this made the factorization 2.4-6x slower than with
+// OMP_THREAD_LIMIT=1 (1024 unknowns: 11.3 ms against 1.9 ms; 1e4: 158 ms against 40 ms). Setting
+// max-active-levels to 0
 // makes every parallel region inactive (one thread) without an environment variable; it is a
 // process-wide setting in libgomp, so it is held only while a CHOLMOD call runs and restored
 // after. The functions are looked up in the loaded libgomp (none: nothing to do).

@@ -27,6 +27,12 @@ bool limit_blas_to_one_thread();
 /// Input matrices are Eigen column-major with int indices; only their LOWER triangle (row >= col)
 /// is read, so a matrix may hold its lower triangle or both. The matrix is wrapped, not copied.
 /// Not thread-safe: one factor per thread (solves reuse internal workspace).
+///
+/// Threads: besides limit_blas_to_one_thread, every CHOLMOD analysis, factorization and rank
+/// update runs with libgomp's max-active-levels set to 0 (restored after the call): Debian's
+/// libcholmod asks for 4 OpenMP threads in loops of its supernodal factorization, which made it
+/// 2.4-6x slower on the 2-core machine (bench/solver/README.md). The setting is process-wide in
+/// libgomp, so the caller's own OpenMP regions run serially while a CHOLMOD call is under way.
 class CholmodFactor {
  public:
   using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;

@@ -23,7 +23,9 @@ enum class LowRankMethod {
   kWoodbury,
   /// Rank-one update/downdate of CHOLMOD's factor (Davis & Hager 2001, cholmod_updown): add =
   /// update, move = update with the new term then downdate of the old one, remove = downdate. The
-  /// factor becomes simplicial; the backend is forced to kCholmodSupernodal.
+  /// factor becomes simplicial; the backend is forced to kCholmodSupernodal. Measured slower than
+  /// kWoodbury (a drag step 1.1-1.6x, its solves being simplicial) and less accurate for stiff
+  /// terms (their pull goes into B): kept for comparison and for many long-lived terms.
   kFactorUpdate,
 };
 

@@ -17,8 +17,14 @@ enum class CholeskyBackend {
   kCholmodSupernodal,  ///< CHOLMOD supernodal L L^T (AMD or METIS ordering, BLAS-3 supernodes)
 };
 
-/// Rows from which kAutomatic uses CHOLMOD. PLACEHOLDER_MEASURE
-inline constexpr int kDefaultSupernodalThreshold = 1000;
+/// Rows from which kAutomatic uses CHOLMOD. Measured by bench/solver (three runs on the shared
+/// 2-core development machine, OpenBLAS and libgomp held to one thread) on the step matrices of
+/// clamped bicubic sheets, SimplicialLDLT time over CHOLMOD time: at 100 rows factor 0.87-0.89
+/// (SimplicialLDLT faster) and 3-column solve 1.05-1.51, so factor + solve break even; at 225
+/// rows 1.14-1.20 and 1.68-1.93; at 1024 3.7-5.2 and 1.6-2.0; at 1e4 5.7-6.3 and 1.5-2.5; at
+/// 1e5 23-25 and 2.6-5.5. CHOLMOD wins every measure from 225 rows on; below about 100 the
+/// simplicial factorization's lower overhead wins. bench/solver/README.md has the table.
+inline constexpr int kDefaultSupernodalThreshold = 200;
 
 struct SparseCholeskySettings {
   CholeskyBackend backend = CholeskyBackend::kAutomatic;
