@@ -36,9 +36,12 @@ void LowRankUpdate::check_term(std::span<const int> rows, std::span<const double
     throw make_error("low-rank term: ", rows.size(), " rows but ", values.size(), " values");
   }
   for (size_t p = 0; p < rows.size(); ++p) {
-    if (rows[p] < 0 || (factored_ && rows[p] >= size())) {
+    if (rows[p] < 0) {
+      throw make_error("low-rank term: row ", rows[p], " (entry ", p, ") is negative");
+    }
+    if (factored_ && rows[p] >= size()) {
       throw make_error("low-rank term: row ", rows[p], " (entry ", p, ") is outside 0..",
-                       factored_ ? size() - 1 : rows[p] - 1);
+                       size() - 1);
     }
     if (!std::isfinite(values[p])) {
       throw make_error("low-rank term: value ", p, " (row ", rows[p], ") is ", values[p]);
@@ -142,6 +145,9 @@ void LowRankUpdate::add_woodbury(int term) {
 
 void LowRankUpdate::drop_woodbury(int term) {
   const auto found = std::find(woodbury_.begin(), woodbury_.end(), term);
+  if (found == woodbury_.end()) {
+    return;  // added before the first factorize: not placed yet
+  }
   const auto j = static_cast<Eigen::Index>(found - woodbury_.begin());
   const auto last = static_cast<Eigen::Index>(woodbury_.size()) - 1;
   if (j != last) {  // the last column takes the dropped one's place

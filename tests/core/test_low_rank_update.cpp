@@ -387,6 +387,18 @@ TEST(LowRankUpdate, BadTermsAreNamed) {
   EXPECT_NE(message([&] { solver.solve_in_place(b); }).find("a target has 2 entries"),
             std::string::npos);
   EXPECT_THROW(LowRankUpdate({LowRankMethod::kWoodbury, {}, -1, 0.0}), Error);
+  // Terms added, moved and removed before the first factorize are only recorded.
+  for (const LowRankMethod method : {LowRankMethod::kWoodbury, LowRankMethod::kFactorUpdate}) {
+    LowRankUpdate early({method, {}, 32, 0.0});
+    const int first = early.add_term(rows, values, 1.0);
+    early.add_term(std::vector<int>{5, 6}, values, 2.0);
+    early.move_term(first, std::vector<int>{2, 3}, values, 3.0);
+    early.remove_term(first);
+    EXPECT_EQ(early.term_count(), 1);
+    EXPECT_THROW(early.solve_in_place(b), Error);  // not factored yet
+    EXPECT_THROW(early.add_term(std::vector<int>{-1}, std::vector<double>{1.0}, 1.0), Error);
+    EXPECT_THROW(early.factorize(sheet_matrix(2)), Error);  // rows 5 and 6 of a 4 by 4 matrix
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, LowRankMethods,
