@@ -87,8 +87,9 @@ class SparseCholesky {
   int analysis_count() const;
   /// Stored entries of L (CHOLMOD: including the explicit zeros of supernodes).
   double factor_nonzeros() const;
-  /// min pivot / max pivot of D (simplicial) or (min L_jj / max L_jj)^2 (CHOLMOD): a cheap lower
-  /// estimate-like indicator of 1 / cond(A); 0 before a successful factorization.
+  /// min pivot / max pivot of D (simplicial) or (min L_jj / max L_jj)^2 (CHOLMOD): a cheap
+  /// indicator of 1 / cond(A), not a bound (rounding level, ~1e-16, flags a singular A); 0 before
+  /// a successful factorization.
   double reciprocal_condition_estimate() const;
 
  private:
