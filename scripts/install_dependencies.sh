@@ -9,6 +9,9 @@ packages=(
   libnlopt-cxx-dev       # optimisation (design and fitting)
   libassimp-dev          # mesh export and import
   nlohmann-json3-dev     # shape and scene files (JSON)
+  libsuitesparse-dev     # CHOLMOD: supernodal sparse Cholesky for large blocks (core/sparse_cholesky.h)
+  libopenblas-dev        # fast BLAS under CHOLMOD's supernodes (Debian's alternatives switch
+                         # libblas.so.3 to OpenBLAS; dnurbs pins it to one thread at run time)
   libgtest-dev libgmock-dev
   libbenchmark-dev       # bench/
   python3 python3-matplotlib python3-numpy  # PNG previews and bench plots
