@@ -27,20 +27,31 @@ struct SampleType {
 };
 
 SampleType parse_sample_type(const std::string& type, const std::string& path) {
-  static const std::map<std::string, SampleType> kTypes = {
-      {"uchar", {1, false, false}},    {"unsigned char", {1, false, false}},
-      {"uint8", {1, false, false}},    {"uint8_t", {1, false, false}},
-      {"signed char", {1, true, false}}, {"int8", {1, true, false}},
-      {"int8_t", {1, true, false}},    {"ushort", {2, false, false}},
-      {"unsigned short", {2, false, false}}, {"uint16", {2, false, false}},
-      {"uint16_t", {2, false, false}}, {"short", {2, true, false}},
-      {"signed short", {2, true, false}}, {"int16", {2, true, false}},
-      {"int16_t", {2, true, false}},   {"uint", {4, false, false}},
-      {"unsigned int", {4, false, false}}, {"uint32", {4, false, false}},
-      {"uint32_t", {4, false, false}}, {"int", {4, true, false}},
-      {"signed int", {4, true, false}}, {"int32", {4, true, false}},
-      {"int32_t", {4, true, false}},   {"float", {4, true, true}},
-      {"double", {8, true, true}}};
+  static const std::map<std::string, SampleType> kTypes = {{"uchar", {1, false, false}},
+                                                           {"unsigned char", {1, false, false}},
+                                                           {"uint8", {1, false, false}},
+                                                           {"uint8_t", {1, false, false}},
+                                                           {"signed char", {1, true, false}},
+                                                           {"int8", {1, true, false}},
+                                                           {"int8_t", {1, true, false}},
+                                                           {"ushort", {2, false, false}},
+                                                           {"unsigned short", {2, false, false}},
+                                                           {"uint16", {2, false, false}},
+                                                           {"uint16_t", {2, false, false}},
+                                                           {"short", {2, true, false}},
+                                                           {"signed short", {2, true, false}},
+                                                           {"int16", {2, true, false}},
+                                                           {"int16_t", {2, true, false}},
+                                                           {"uint", {4, false, false}},
+                                                           {"unsigned int", {4, false, false}},
+                                                           {"uint32", {4, false, false}},
+                                                           {"uint32_t", {4, false, false}},
+                                                           {"int", {4, true, false}},
+                                                           {"signed int", {4, true, false}},
+                                                           {"int32", {4, true, false}},
+                                                           {"int32_t", {4, true, false}},
+                                                           {"float", {4, true, true}},
+                                                           {"double", {8, true, true}}};
   const auto found = kTypes.find(type);
   if (found == kTypes.end()) {
     throw make_error("NRRD file ", path, ": type \"", type, "\" is not supported");
@@ -182,7 +193,8 @@ std::string read_nrrd_payload(std::istream& header_stream,
     if (found != fields.end()) {
       std::istringstream text(found->second);
       if (!(text >> value)) {
-        throw make_error("NRRD file ", path, ": ", key, " \"", found->second, "\" is not an integer");
+        throw make_error("NRRD file ", path, ": ", key, " \"", found->second,
+                         "\" is not an integer");
       }
     }
     if (value < 0 || value > (1LL << 30)) {
@@ -281,7 +293,8 @@ Volume read_nrrd(const std::string& path) {
   }
   const auto* data = reinterpret_cast<const unsigned char*>(payload.data());
   for (std::size_t i = 0; i < count; ++i) {
-    volume.values[i] = decode_sample(data + i * static_cast<std::size_t>(type.bytes), type, big_endian);
+    volume.values[i] =
+        decode_sample(data + i * static_cast<std::size_t>(type.bytes), type, big_endian);
   }
   return volume;
 }

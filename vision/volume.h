@@ -37,7 +37,9 @@ struct Volume {
   double operator()(int x, int y, int z) const {
     return values[static_cast<std::size_t>(index(x, y, z))];
   }
-  double& operator()(int x, int y, int z) { return values[static_cast<std::size_t>(index(x, y, z))]; }
+  double& operator()(int x, int y, int z) {
+    return values[static_cast<std::size_t>(index(x, y, z))];
+  }
 };
 
 /// Throws Error naming `what`, the size and the limit if a side is outside [1, kMaxVolumeSide]
