@@ -76,7 +76,7 @@ Eigen::VectorXd gaussian_kernel(double sigma) {
   if (sigma == 0.0) {
     return Eigen::VectorXd::Ones(1);
   }
-  const int radius = static_cast<int>(std::ceil(4.0 * sigma));
+  const int radius = static_cast<int>(std::ceil(5.0 * sigma));
   Eigen::VectorXd kernel(2 * radius + 1);
   for (int k = 0; k <= 2 * radius; ++k) {
     const double t = k - radius;
