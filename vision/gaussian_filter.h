@@ -16,7 +16,8 @@ namespace dnurbs {
 /// Largest smoothing width accepted (in pixels or voxels).
 inline constexpr double kMaxGaussianSigma = 256.0;
 
-/// The sampled, normalized Gaussian G_sigma on taps t = -r..r, r = ceil(5 sigma) (the cut tail holds 6e-7 of the mass).
+/// The sampled, normalized Gaussian G_sigma on taps t = -r..r, r = ceil(5 sigma) (the cut tail
+/// holds 6e-7 of the mass).
 ///
 /// kernel  2r+1 weights summing to 1; kernel(k) is the weight of offset t = k - r.
 /// sigma = 0 gives the identity kernel {1}. Throws Error naming sigma if it is negative, NaN or

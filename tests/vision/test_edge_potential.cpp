@@ -38,8 +38,10 @@ TEST(ImageEdgePotential, GradientMatchesFiniteDifferencesOfTheInterpolant) {
     const Eigen::Vector2d p(1.3 + 0.2317 * k, 1.7 + 0.2113 * ((k * 7) % 200));
     const Eigen::Vector2d analytic = potential.gradient(p);
     const Eigen::Vector2d numeric(
-        (potential.value(p + Eigen::Vector2d(h, 0)) - potential.value(p - Eigen::Vector2d(h, 0))) / (2 * h),
-        (potential.value(p + Eigen::Vector2d(0, h)) - potential.value(p - Eigen::Vector2d(0, h))) / (2 * h));
+        (potential.value(p + Eigen::Vector2d(h, 0)) - potential.value(p - Eigen::Vector2d(h, 0))) /
+            (2 * h),
+        (potential.value(p + Eigen::Vector2d(0, h)) - potential.value(p - Eigen::Vector2d(0, h))) /
+            (2 * h));
     worst = std::max(worst, (analytic - numeric).norm());
   }
   // Central differences: truncation h^2 |P'''| / 6 ~ 1e-13, rounding 1e-16 |P| / h ~ 1e-10.
@@ -48,7 +50,9 @@ TEST(ImageEdgePotential, GradientMatchesFiniteDifferencesOfTheInterpolant) {
 
 TEST(ImageEdgePotential, InterpolationPassesThroughSamplesAndReproducesQuadratics) {
   Image quadratic(24, 20);
-  const auto q = [](double x, double y) { return 0.01 * x * x + 0.02 * x * y - 0.03 * y * y + 0.1 * x; };
+  const auto q = [](double x, double y) {
+    return 0.01 * x * x + 0.02 * x * y - 0.03 * y * y + 0.1 * x;
+  };
   for (int y = 0; y < 20; ++y) {
     for (int x = 0; x < 24; ++x) {
       quadratic(x, y) = q(x, y);
@@ -92,8 +96,8 @@ std::pair<double, double> blob_potential_errors(int m) {
     const double exact = -c * s * s / t2 * r / t2 * e;
     const double exact_slope = -c * s * s / (t2 * t2) * (1.0 - r * r / t2) * e;
     value_error = std::max(value_error, std::abs(potential.value(p) - exact) / peak);
-    gradient_error = std::max(gradient_error,
-                              (potential.gradient(p) - exact_slope * direction).norm() / peak_slope);
+    gradient_error = std::max(
+        gradient_error, (potential.gradient(p) - exact_slope * direction).norm() / peak_slope);
   }
   return {value_error, gradient_error};
 }
@@ -102,9 +106,10 @@ TEST(ImageEdgePotential, GaussianBlobPotentialConvergesToTheAnalyticEdgeStrength
   const auto [value_1, gradient_1] = blob_potential_errors(1);
   const auto [value_2, gradient_2] = blob_potential_errors(2);
   const auto [value_4, gradient_4] = blob_potential_errors(4);
-  std::printf("blob potential relative errors at h = 1, 1/2, 1/4: P %.2e %.2e %.2e, grad P %.2e "
-              "%.2e %.2e\n",
-              value_1, value_2, value_4, gradient_1, gradient_2, gradient_4);
+  std::printf(
+      "blob potential relative errors at h = 1, 1/2, 1/4: P %.2e %.2e %.2e, grad P %.2e "
+      "%.2e %.2e\n",
+      value_1, value_2, value_4, gradient_1, gradient_2, gradient_4);
   // Bicubic (Catmull-Rom) interpolation: O(h^3) in values, O(h^2) in the gradient. Measured
   // value orders 4.0 (h = 1 -> 1/2) and 1.9 (1/2 -> 1/4), 3.0 over h = 1 -> 1/4; gradient orders
   // 2.3 and 2.0. (The Gaussian filter's own error, 1e-8 in test_gaussian_filter, is far below.)

@@ -37,7 +37,8 @@ TEST(GaussianKernel, SumsToOneAndTheDerivativeHasUnitMoment) {
 
 TEST(GaussianKernel, BadSigmaIsNamed) {
   EXPECT_NE(error_message([] { gaussian_kernel(-1.0); }).find("sigma = -1"), std::string::npos);
-  EXPECT_NE(error_message([] { gaussian_kernel(std::nan("")); }).find("sigma = nan"), std::string::npos);
+  EXPECT_NE(error_message([] { gaussian_kernel(std::nan("")); }).find("sigma = nan"),
+            std::string::npos);
   EXPECT_NE(error_message([] { gaussian_derivative_kernel(1000.5); }).find("sigma = 1000.5"),
             std::string::npos);
 }
@@ -85,9 +86,9 @@ TEST(GaussianSmoothing, GaussianBlobMatchesTheClosedFormConvolution) {
       const double exact = s * s / t2 * std::exp(-(p - center).squaredNorm() / (2.0 * t2));
       value_error = std::max(value_error, std::abs(smooth(x, y) - exact));
       const Eigen::Vector2d exact_gradient = -(p - center).head<2>() / t2 * exact;
-      gradient_error = std::max(gradient_error,
-                                (Eigen::Vector2d(gradient[0](x, y), gradient[1](x, y)) - exact_gradient)
-                                    .norm());
+      gradient_error =
+          std::max(gradient_error,
+                   (Eigen::Vector2d(gradient[0](x, y), gradient[1](x, y)) - exact_gradient).norm());
     }
   }
   // Sampling both Gaussians at unit spacing errs by ~exp(-2 pi^2 sigma^2) (Poisson summation,
@@ -121,9 +122,11 @@ TEST(GaussianSmoothing, VolumeBlobMatchesTheClosedFormConvolution) {
     for (int y = 4; y < 17; ++y) {
       for (int x = 4; x < 17; ++x) {
         const Eigen::Vector3d p(x, y, z);
-        const double exact = std::pow(s * s / t2, 1.5) * std::exp(-(p - center).squaredNorm() / (2.0 * t2));
+        const double exact =
+            std::pow(s * s / t2, 1.5) * std::exp(-(p - center).squaredNorm() / (2.0 * t2));
         value_error = std::max(value_error, std::abs(smooth(x, y, z) - exact));
-        const Eigen::Vector3d numeric(gradient[0](x, y, z), gradient[1](x, y, z), gradient[2](x, y, z));
+        const Eigen::Vector3d numeric(gradient[0](x, y, z), gradient[1](x, y, z),
+                                      gradient[2](x, y, z));
         gradient_error = std::max(gradient_error, (numeric + (p - center) / t2 * exact).norm());
       }
     }

@@ -65,3 +65,21 @@ inline std::function<bool(const Eigen::Vector2d&)> disc(const Eigen::Vector2d& c
 }
 
 }  // namespace dnurbs::testing
+
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace dnurbs::testing {
+
+/// A fresh file path in the temporary directory, named after the running test.
+inline std::string scratch_file(const std::string& name) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto folder = std::filesystem::temp_directory_path() / "dnurbs_vision_tests";
+  std::filesystem::create_directories(folder);
+  return (folder / (std::string(info->test_suite_name()) + "_" + info->name() + "_" + name))
+      .string();
+}
+
+}  // namespace dnurbs::testing
