@@ -77,7 +77,8 @@ GridCrossings grid_crossings(const FreudenthalGrid& grid, const std::vector<Cont
           const double s = (level - la) / (lb - la);
           const double along =
               along_of(family, a) + s * (along_of(family, b) - along_of(family, a));
-          lines[static_cast<std::size_t>(level + offset)].push_back({along, sign});
+          lines[static_cast<std::size_t>(level) + static_cast<std::size_t>(offset)].push_back(
+              {along, sign});
         }
       }
     }

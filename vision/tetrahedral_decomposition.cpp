@@ -197,7 +197,7 @@ const std::vector<GridCrossing>& TetrahedralCrossings::line(int family,
 std::vector<char> inside_vertices(const TetrahedralGrid& grid,
                                   const TetrahedralCrossings& crossings) {
   std::vector<char> inside(static_cast<std::size_t>(grid.vertex_count()), 0);
-  const Eigen::Vector3i n = grid.cells();
+  const Eigen::Vector3i& n = grid.cells();
   for (int k = 1; k < n.z(); ++k) {
     for (int j = 1; j < n.y(); ++j) {
       const auto& line = crossings.line(0, Eigen::Vector3i(0, j, k));

@@ -7,10 +7,8 @@
 namespace dnurbs {
 
 namespace {
-const std::array<Eigen::Vector3i, TetrahedralGrid::kFamilies> kDirections = {
-    Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(0, 1, 0), Eigen::Vector3i(0, 0, 1),
-    Eigen::Vector3i(1, 1, 0), Eigen::Vector3i(1, 0, 1), Eigen::Vector3i(0, 1, 1),
-    Eigen::Vector3i(1, 1, 1)};
+constexpr std::array<std::array<int, 3>, TetrahedralGrid::kFamilies> kDirections = {
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
 }  // namespace
 
 TetrahedralGrid::TetrahedralGrid(const Eigen::Vector3d& origin, double cell_size,
@@ -38,13 +36,13 @@ bool TetrahedralGrid::on_border(const Eigen::Vector3i& g) const {
 }
 
 Eigen::Vector3i TetrahedralGrid::direction(int family) {
-  return kDirections[static_cast<std::size_t>(family)];
+  const auto& d = kDirections[static_cast<std::size_t>(family)];
+  return {d[0], d[1], d[2]};
 }
 
 int TetrahedralGrid::family_of(const Eigen::Vector3i& step) {
   for (int family = 0; family < kFamilies; ++family) {
-    if (step == kDirections[static_cast<std::size_t>(family)] ||
-        step == -kDirections[static_cast<std::size_t>(family)]) {
+    if (step == direction(family) || step == -direction(family)) {
       return family;
     }
   }
@@ -53,7 +51,7 @@ int TetrahedralGrid::family_of(const Eigen::Vector3i& step) {
 
 std::array<std::array<Eigen::Vector3i, 4>, 6> TetrahedralGrid::cube_tetrahedra(
     const Eigen::Vector3i& g) {
-  static const std::array<std::array<int, 3>, 6> kOrders = {
+  static constexpr std::array<std::array<int, 3>, 6> kOrders = {
       {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
   std::array<std::array<Eigen::Vector3i, 4>, 6> tetrahedra;
   for (std::size_t t = 0; t < 6; ++t) {

@@ -27,33 +27,34 @@ struct SampleType {
 };
 
 SampleType parse_sample_type(const std::string& type, const std::string& path) {
-  static const std::map<std::string, SampleType> kTypes = {{"uchar", {1, false, false}},
-                                                           {"unsigned char", {1, false, false}},
-                                                           {"uint8", {1, false, false}},
-                                                           {"uint8_t", {1, false, false}},
-                                                           {"signed char", {1, true, false}},
-                                                           {"int8", {1, true, false}},
-                                                           {"int8_t", {1, true, false}},
-                                                           {"ushort", {2, false, false}},
-                                                           {"unsigned short", {2, false, false}},
-                                                           {"uint16", {2, false, false}},
-                                                           {"uint16_t", {2, false, false}},
-                                                           {"short", {2, true, false}},
-                                                           {"signed short", {2, true, false}},
-                                                           {"int16", {2, true, false}},
-                                                           {"int16_t", {2, true, false}},
-                                                           {"uint", {4, false, false}},
-                                                           {"unsigned int", {4, false, false}},
-                                                           {"uint32", {4, false, false}},
-                                                           {"uint32_t", {4, false, false}},
-                                                           {"int", {4, true, false}},
-                                                           {"signed int", {4, true, false}},
-                                                           {"int32", {4, true, false}},
-                                                           {"int32_t", {4, true, false}},
-                                                           {"float", {4, true, true}},
-                                                           {"double", {8, true, true}}};
-  const auto found = kTypes.find(type);
-  if (found == kTypes.end()) {
+  static const std::map<std::string, SampleType> sample_types = {
+      {"uchar", {1, false, false}},
+      {"unsigned char", {1, false, false}},
+      {"uint8", {1, false, false}},
+      {"uint8_t", {1, false, false}},
+      {"signed char", {1, true, false}},
+      {"int8", {1, true, false}},
+      {"int8_t", {1, true, false}},
+      {"ushort", {2, false, false}},
+      {"unsigned short", {2, false, false}},
+      {"uint16", {2, false, false}},
+      {"uint16_t", {2, false, false}},
+      {"short", {2, true, false}},
+      {"signed short", {2, true, false}},
+      {"int16", {2, true, false}},
+      {"int16_t", {2, true, false}},
+      {"uint", {4, false, false}},
+      {"unsigned int", {4, false, false}},
+      {"uint32", {4, false, false}},
+      {"uint32_t", {4, false, false}},
+      {"int", {4, true, false}},
+      {"signed int", {4, true, false}},
+      {"int32", {4, true, false}},
+      {"int32_t", {4, true, false}},
+      {"float", {4, true, true}},
+      {"double", {8, true, true}}};
+  const auto found = sample_types.find(type);
+  if (found == sample_types.end()) {
     throw make_error("NRRD file ", path, ": type \"", type, "\" is not supported");
   }
   return found->second;

@@ -34,8 +34,9 @@ Eigen::MatrixX3i torus_triangles(int n, int m) {
       const int b = ((i + 1) % n) * m + j;
       const int c = ((i + 1) % n) * m + (j + 1) % m;
       const int d = i * m + (j + 1) % m;
-      f.row(2 * a) << a, b, c;
-      f.row(2 * a + 1) << a, c, d;
+      const Eigen::Index row = 2 * static_cast<Eigen::Index>(a);
+      f.row(row) << a, b, c;
+      f.row(row + 1) << a, c, d;
     }
   }
   return f;
