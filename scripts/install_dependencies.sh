@@ -9,6 +9,8 @@ packages=(
   libnlopt-cxx-dev       # optimisation (design and fitting)
   libassimp-dev          # mesh export and import
   nlohmann-json3-dev     # shape and scene files (JSON)
+  libpng-dev             # vision/: PNG images for T-snakes (libpng's simplified API)
+  zlib1g-dev             # vision/: gzip-encoded NRRD volumes for T-surfaces
   libgtest-dev libgmock-dev
   libbenchmark-dev       # bench/
   python3 python3-matplotlib python3-numpy  # PNG previews and bench plots

@@ -24,9 +24,10 @@ int line_offset(const FreudenthalGrid& grid, int family) {
   return family == FreudenthalGrid::kDiagonal ? grid.cells_y() : 0;
 }
 
-/// The fraction along the edge (first vertex at 0) of the node on a boundary edge: the crossing
-/// nearest the outside vertex among those on the edge.
-double node_fraction(const std::vector<GridCrossing>& line, double start, bool first_inside) {
+}  // namespace
+
+double crossing_fraction_on_line(const std::vector<GridCrossing>& line, double start,
+                                 bool first_inside) {
   const auto lower = std::lower_bound(line.begin(), line.end(), start,
                                       [](const GridCrossing& c, double v) { return c.along < v; });
   const auto upper = std::upper_bound(line.begin(), line.end(), start + 1.0,
@@ -37,8 +38,6 @@ double node_fraction(const std::vector<GridCrossing>& line, double start, bool f
   const double along = first_inside ? std::prev(upper)->along : lower->along;
   return std::clamp(along - start, kAcidEdgeMargin, 1.0 - kAcidEdgeMargin);
 }
-
-}  // namespace
 
 GridCrossings grid_crossings(const FreudenthalGrid& grid, const std::vector<Contour>& contours) {
   GridCrossings crossings;
@@ -138,7 +137,7 @@ std::vector<Contour> boundary_contours(const FreudenthalGrid& grid, const std::v
               ? first.y()
               : (family == FreudenthalGrid::kVertical ? first.x()
                                                       : first.x() - first.y() + grid.cells_y());
-      const double fraction = node_fraction(
+      const double fraction = crossing_fraction_on_line(
           crossings.lines[static_cast<std::size_t>(family)][static_cast<std::size_t>(line)], start,
           is_inside(first));
       const Eigen::Vector2d g =

@@ -40,6 +40,13 @@ struct GridCrossings {
   std::array<std::vector<std::vector<GridCrossing>>, 3> lines;
 };
 
+/// The node of a boundary edge from the crossings of its line (sorted by along): the fraction
+/// (0 at the edge's first vertex, at along = start; 1 at along = start + 1) of the crossing on the
+/// edge nearest its outside vertex, its midpoint 0.5 if the edge has no crossing, kept
+/// kAcidEdgeMargin away from the vertices.
+double crossing_fraction_on_line(const std::vector<GridCrossing>& line, double start,
+                                 bool first_inside);
+
 /// Throws Error naming the contour and node for a node that is not finite.
 GridCrossings grid_crossings(const FreudenthalGrid& grid, const std::vector<Contour>& contours);
 

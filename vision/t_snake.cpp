@@ -11,27 +11,13 @@ namespace dnurbs {
 
 namespace {
 
-void check_parameter(double value, const char* name, bool positive) {
-  if (!std::isfinite(value) || value < 0.0 || (positive && value == 0.0)) {
-    throw make_error("T-snake ", name, " = ", value, positive ? " is not > 0" : " is not >= 0",
-                     " and finite");
-  }
-}
-
-FreudenthalGrid grid_over_image(const Image& image, double cell_size) {
-  check_parameter(cell_size, "cell_size", true);
+FreudenthalGrid grid_over_image(const Image& image, const TSnakeParameters& parameters) {
+  // Alpha and beta are the second and fourth differences: largest eigenvalues 4 and 16.
+  parameters.validate("T-snake", 4.0, 16.0);
+  const double cell_size = parameters.cell_size;
   const int cells_x = static_cast<int>(std::floor((image.width() - 1) / cell_size));
   const int cells_y = static_cast<int>(std::floor((image.height() - 1) / cell_size));
   return {Eigen::Vector2d::Zero(), cell_size, cells_x, cells_y};
-}
-
-/// The inflation switch F(I) (McInerney & Terzopoulos 2000, section 2): the binary sign, or its
-/// continuous ramp of half-width `band`.
-double inflation_switch(double intensity, double threshold, double band) {
-  if (band == 0.0) {
-    return intensity >= threshold ? 1.0 : -1.0;
-  }
-  return std::clamp((intensity - threshold) / band, -1.0, 1.0);
 }
 
 }  // namespace
@@ -40,29 +26,7 @@ TSnake::TSnake(const Image& image, ImageEdgePotential potential, const TSnakePar
     : image_(image),
       potential_(std::move(potential)),
       parameters_(parameters),
-      grid_(grid_over_image(image, parameters.cell_size)) {
-  check_parameter(parameters.tension, "tension", false);
-  check_parameter(parameters.rigidity, "rigidity", false);
-  check_parameter(parameters.damping, "damping", true);
-  check_parameter(parameters.time_step, "time_step", true);
-  check_parameter(parameters.inflation, "inflation", false);
-  check_parameter(parameters.inflation_band, "inflation_band", false);
-  check_parameter(parameters.edge_weight, "edge_weight", false);
-  if (!std::isfinite(parameters.threshold)) {
-    throw make_error("T-snake threshold = ", parameters.threshold, " is not finite");
-  }
-  if (parameters.steps_per_reparameterization < 1) {
-    throw make_error("T-snake steps_per_reparameterization = ",
-                     parameters.steps_per_reparameterization, " is not >= 1");
-  }
-  // Explicit Euler on the pentadiagonal stiffness: the largest eigenvalue of a alpha + b beta is
-  // 4a + 16b (the alternating mode), so the step is stable only below 1.
-  const double stiffness = parameters.time_step / parameters.damping *
-                           (4.0 * parameters.tension + 16.0 * parameters.rigidity);
-  if (stiffness >= 1.0) {
-    throw make_error("T-snake explicit step is unstable: time_step / damping (4 tension + 16 ",
-                     "rigidity) = ", stiffness, ", must be < 1");
-  }
+      grid_(grid_over_image(image, parameters)) {
   if (image.width() != potential_.width() || image.height() != potential_.height()) {
     throw make_error("T-snake image is ", image.width(), " by ", image.height(),
                      ", its edge potential ", potential_.width(), " by ", potential_.height());

@@ -16,32 +16,20 @@
 #include "vision/edge_potential.h"
 #include "vision/freudenthal_grid.h"
 #include "vision/image.h"
+#include "vision/topology_adaptive_parameters.h"
 
 namespace dnurbs {
 
-/// The physical and numerical parameters of T-snakes (all in pixel units).
+/// The parameters of T-snakes (pixel units; TopologyAdaptiveParameters lists them).
 ///
 /// The explicit deformation step of every node (McInerney & Terzopoulos 2000, section 2, the
 /// discrete snake of Terzopoulos, eqs. 1.2-1.5 with mu = 0) is
 ///   x_i <- x_i + (time_step / damping) (-tension alpha_i - rigidity beta_i + rho_i + f_i)
 /// with alpha_i = 2 x_i - x_{i-1} - x_{i+1}, beta_i = 2 alpha_i - alpha_{i-1} - alpha_{i+1},
 /// the inflation rho_i = inflation F(I(x_i)) n_i along the outward unit normal n_i, and the edge
-/// force f_i = -edge_weight grad P(x_i). F(I) = +1 where I >= threshold and -1 elsewhere when
-/// inflation_band = 0 (the binary switch of McInerney & Terzopoulos); otherwise the continuous
-/// ramp F(I) = clamp((I - threshold) / inflation_band, -1, 1), which lets a node rest on the
-/// threshold contour instead of oscillating about it. I is the image bilinearly interpolated.
-struct TSnakeParameters {
-  double cell_size = 2.0;                ///< ACID grid cell side
-  double tension = 0.05;                 ///< a
-  double rigidity = 0.0;                 ///< b
-  double damping = 1.0;                  ///< gamma
-  double time_step = 0.2;                ///< Delta t
-  double inflation = 1.0;                ///< q
-  double threshold = 0.5;                ///< T
-  double inflation_band = 0.0;           ///< w, 0 for the binary switch
-  double edge_weight = 1.0;              ///< p
-  int steps_per_reparameterization = 1;  ///< M
-};
+/// force f_i = -edge_weight grad P(x_i); F is inflation_switch and I the image bilinearly
+/// interpolated. The defaults are TopologyAdaptiveParameters'.
+struct TSnakeParameters : TopologyAdaptiveParameters {};
 
 /// A set of T-snakes on one image.
 ///
@@ -51,10 +39,9 @@ struct TSnakeParameters {
 /// frame (x along image columns, y along rows).
 class TSnake {
  public:
-  /// Throws Error naming the parameter for a negative or non-finite weight, damping, time step or
-  /// cell size <= 0, M < 1, an explicit step that would be unstable (time_step / damping
-  /// (4 tension + 16 rigidity) >= 1), an image whose size differs from the potential's, or a grid
-  /// with fewer than 2 cells per side.
+  /// Throws Error as TopologyAdaptiveParameters::validate (the largest eigenvalues of alpha and
+  /// beta are 4 and 16), for an image whose size differs from the potential's, or a grid with
+  /// fewer than 2 cells per side.
   TSnake(const Image& image, ImageEdgePotential potential, const TSnakeParameters& parameters);
 
   /// Creates a snake from a closed polygon (#N by 2, N >= 3): the region it winds around

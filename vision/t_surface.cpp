@@ -13,15 +13,10 @@ namespace dnurbs {
 
 namespace {
 
-void check_parameter(double value, const char* name, bool positive) {
-  if (!std::isfinite(value) || value < 0.0 || (positive && value == 0.0)) {
-    throw make_error("T-surface ", name, " = ", value, positive ? " is not > 0" : " is not >= 0",
-                     " and finite");
-  }
-}
-
-TetrahedralGrid grid_over_volume(const Volume& volume, double cell_size) {
-  check_parameter(cell_size, "cell_size", true);
+TetrahedralGrid grid_over_volume(const Volume& volume, const TSurfaceParameters& parameters) {
+  // The umbrella Laplacian has eigenvalues in [0, 2], its square in [0, 4].
+  parameters.validate("T-surface", 2.0, 4.0);
+  const double cell_size = parameters.cell_size;
   Eigen::Vector3i cells;
   for (int axis = 0; axis < 3; ++axis) {
     cells[axis] =
@@ -51,28 +46,7 @@ TSurface::TSurface(const Volume& volume, VolumeEdgePotential potential,
     : volume_(volume),
       potential_(std::move(potential)),
       parameters_(parameters),
-      grid_(grid_over_volume(volume, parameters.cell_size)) {
-  check_parameter(parameters.tension, "tension", false);
-  check_parameter(parameters.rigidity, "rigidity", false);
-  check_parameter(parameters.damping, "damping", true);
-  check_parameter(parameters.time_step, "time_step", true);
-  check_parameter(parameters.inflation, "inflation", false);
-  check_parameter(parameters.inflation_band, "inflation_band", false);
-  check_parameter(parameters.edge_weight, "edge_weight", false);
-  if (!std::isfinite(parameters.threshold)) {
-    throw make_error("T-surface threshold = ", parameters.threshold, " is not finite");
-  }
-  if (parameters.steps_per_reparameterization < 1) {
-    throw make_error("T-surface steps_per_reparameterization = ",
-                     parameters.steps_per_reparameterization, " is not >= 1");
-  }
-  // The umbrella Laplacian has eigenvalues in [0, 2], its square in [0, 4].
-  const double stiffness = parameters.time_step / parameters.damping *
-                           (2.0 * parameters.tension + 4.0 * parameters.rigidity);
-  if (stiffness >= 1.0) {
-    throw make_error("T-surface explicit step is unstable: time_step / damping (2 tension + 4 ",
-                     "rigidity) = ", stiffness, ", must be < 1");
-  }
+      grid_(grid_over_volume(volume, parameters)) {
   if (volume.size != potential_.samples().size) {
     throw make_error("T-surface volume is ", volume.size[0], " by ", volume.size[1], " by ",
                      volume.size[2], ", its edge potential ", potential_.samples().size[0], " by ",
@@ -132,9 +106,7 @@ Eigen::MatrixX3d TSurface::vertex_forces() const {
         norm > 0.0 ? Eigen::RowVector3d(normals.row(i) / norm) : Eigen::RowVector3d::Zero();
     const double value = intensity(x);
     const double switch_value =
-        parameters_.inflation_band == 0.0
-            ? (value >= parameters_.threshold ? 1.0 : -1.0)
-            : std::clamp((value - parameters_.threshold) / parameters_.inflation_band, -1.0, 1.0);
+        inflation_switch(value, parameters_.threshold, parameters_.inflation_band);
     forces.row(i) = -parameters_.tension * alpha.row(i) - parameters_.rigidity * beta.row(i) +
                     parameters_.inflation * switch_value * normal -
                     parameters_.edge_weight * potential_.gradient(x).transpose();

@@ -13,31 +13,28 @@
 #include "surface/triangle_mesh.h"
 #include "vision/tetrahedral_decomposition.h"
 #include "vision/tetrahedral_grid.h"
+#include "vision/topology_adaptive_parameters.h"
 #include "vision/volume.h"
 #include "vision/volume_edge_potential.h"
 
 namespace dnurbs {
 
-/// The parameters of T-surfaces (voxel units).
+/// The parameters of T-surfaces (voxel units; TopologyAdaptiveParameters lists them).
 ///
 /// The explicit step of every mesh vertex, the discrete deformable surface with mu = 0
 /// (Terzopoulos, eq. 1.20 with the umbrella Laplacian as the discrete membrane and thin plate):
 ///   x_i <- x_i + (time_step / damping) (-tension alpha_i - rigidity beta_i + rho_i + f_i)
 /// with alpha_i = x_i - mean of the neighbours x_j, beta_i = alpha_i - mean of the neighbours
-/// alpha_j, rho_i = inflation F(V(x_i)) n_i (n_i the area-weighted outward vertex normal, F as for
-/// T-snakes: the binary switch about threshold when inflation_band = 0, else the ramp), and
-/// f_i = -edge_weight grad P(x_i). V is the volume trilinearly interpolated.
-struct TSurfaceParameters {
-  double cell_size = 2.0;
-  double tension = 0.2;
-  double rigidity = 0.0;
-  double damping = 1.0;
-  double time_step = 0.25;
-  double inflation = 1.0;
-  double threshold = 0.5;
-  double inflation_band = 0.25;
-  double edge_weight = 1.0;
-  int steps_per_reparameterization = 1;
+/// alpha_j, rho_i = inflation F(V(x_i)) n_i (n_i the area-weighted outward vertex normal, F the
+/// inflation_switch), and f_i = -edge_weight grad P(x_i); V is the volume trilinearly
+/// interpolated. Defaults as TopologyAdaptiveParameters except tension 0.2, time_step 0.25 and
+/// the ramp switch with inflation_band 0.25.
+struct TSurfaceParameters : TopologyAdaptiveParameters {
+  TSurfaceParameters() {
+    tension = 0.2;
+    time_step = 0.25;
+    inflation_band = 0.25;
+  }
 };
 
 /// A T-surface in one volume. The grid covers the volume: cells of side cell_size from (0, 0, 0),
@@ -45,9 +42,9 @@ struct TSurfaceParameters {
 /// closed, manifold, triangles counter-clockwise seen from outside, possibly several components.
 class TSurface {
  public:
-  /// Throws Error naming the parameter for negative or non-finite weights, damping, time step or
-  /// cell size <= 0, M < 1, an unstable explicit step (time_step / damping (2 tension + 4
-  /// rigidity) >= 1), or a volume whose size differs from the potential's.
+  /// Throws Error as TopologyAdaptiveParameters::validate (the largest eigenvalues of the
+  /// umbrella alpha and of beta are 2 and 4) or for a volume whose size differs from the
+  /// potential's.
   TSurface(const Volume& volume, VolumeEdgePotential potential,
            const TSurfaceParameters& parameters);
 

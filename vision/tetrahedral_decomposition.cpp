@@ -221,17 +221,8 @@ std::vector<char> inside_vertices(const TetrahedralGrid& grid,
 
 double crossing_fraction(const TetrahedralCrossings& crossings, int family,
                          const Eigen::Vector3i& first, bool first_inside) {
-  const auto& line = crossings.line(family, first);
-  const double start = first[family_axes(family)[0]];
-  const auto lower = std::lower_bound(line.begin(), line.end(), start,
-                                      [](const GridCrossing& c, double v) { return c.along < v; });
-  const auto upper = std::upper_bound(line.begin(), line.end(), start + 1.0,
-                                      [](double v, const GridCrossing& c) { return v < c.along; });
-  if (lower == upper) {
-    return 0.5;
-  }
-  const double along = first_inside ? std::prev(upper)->along : lower->along;
-  return std::clamp(along - start, kAcidEdgeMargin, 1.0 - kAcidEdgeMargin);
+  return crossing_fraction_on_line(crossings.line(family, first), first[family_axes(family)[0]],
+                                   first_inside);
 }
 
 TriangleMesh boundary_mesh(const TetrahedralGrid& grid, const std::vector<char>& inside,
