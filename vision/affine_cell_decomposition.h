@@ -1,7 +1,7 @@
 #pragma once
 // The two-phase T-snake reparameterization on the affine cell image decomposition (ACID)
 // (McInerney & Terzopoulos, T-snakes: Topology adaptive snakes, Medical Image Analysis 4(2)
-// 2000, section 3; Terzopoulos, Deformable Models: Classic, Topology-Adaptive and Generalized
+// 2000; Terzopoulos, Deformable Models: Classic, Topology-Adaptive and Generalized
 // Formulations, section 3.1 and Fig. 4(b)-(d)). Phase I intersects the deformed snake elements
 // with the grid edges; the inside grid vertices are those the deformed snakes wind around
 // positively; phase II builds the new snakes from the boundary triangles (mixed inside/outside

@@ -17,6 +17,13 @@ ImageEdgePotential::ImageEdgePotential(const Image& image, double sigma, double 
     throw make_error("edge potential image is ", image.width(), " by ", image.height(),
                      ", needs at least 2 by 2");
   }
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      if (!std::isfinite(image(x, y))) {
+        throw make_error("edge potential image pixel (", x, ", ", y, ") is ", image(x, y));
+      }
+    }
+  }
   smoothed_ = gaussian_smooth(image, sigma);
   // P = -c |grad(G_sigma * I)| at every pixel (Terzopoulos, below eq. 1.3).
   const std::array<Image, 2> gradient = smoothed_gradient(image, sigma);

@@ -1,7 +1,7 @@
 #pragma once
 // The Coxeter-Freudenthal triangulation of a square grid: the affine cell image decomposition
 // (ACID) on which T-snakes are reparameterized (McInerney & Terzopoulos, T-snakes: Topology
-// adaptive snakes, Medical Image Analysis 4(2) 2000, section 3; Terzopoulos, Deformable Models:
+// adaptive snakes, Medical Image Analysis 4(2) 2000; Terzopoulos, Deformable Models:
 // Classic, Topology-Adaptive and Generalized Formulations, section 3.1, Fig. 4(a)).
 
 #include <array>

@@ -132,8 +132,19 @@ Image read_pgm(const std::string& path) {
     throw make_error("PGM file ", path, ": maxval ", maxval, " is outside [1, 65535]");
   }
   // read_pgm_integer consumed the single whitespace byte that ends the header.
-  Image image(static_cast<int>(width), static_cast<int>(height));
   const int bytes = maxval > 255 ? 2 : 1;
+  if (!ascii) {
+    // Check the data is all there before allocating for it.
+    const auto here = in.tellg();
+    in.seekg(0, std::ios::end);
+    const long long available = static_cast<long long>(in.tellg() - here);
+    in.seekg(here);
+    if (available < width * height * bytes) {
+      throw make_error("PGM file ", path, ": data has ", available, " bytes, expected ",
+                       width * height * bytes);
+    }
+  }
+  Image image(static_cast<int>(width), static_cast<int>(height));
   for (long long i = 0; i < width * height; ++i) {
     long long sample = 0;
     if (ascii) {

@@ -31,6 +31,9 @@ TSnake::TSnake(const Image& image, ImageEdgePotential potential, const TSnakePar
     throw make_error("T-snake image is ", image.width(), " by ", image.height(),
                      ", its edge potential ", potential_.width(), " by ", potential_.height());
   }
+  if (!image.values.allFinite()) {
+    throw make_error("T-snake image has a pixel that is not finite");
+  }
   inside_.assign(static_cast<std::size_t>(grid_.vertex_count()), 0);
 }
 
@@ -61,7 +64,7 @@ Eigen::MatrixX2d TSnake::node_forces(const Contour& contour) const {
   const Eigen::Index n = contour.rows();
   const auto wrap = [n](Eigen::Index i) { return (i % n + n) % n; };
   // Tension and rigidity differences alpha_i, beta_i of the discrete snake (Terzopoulos, eqs.
-  // 1.8-1.11 with unit spacing; McInerney & Terzopoulos 2000, section 2).
+  // 1.8-1.11 with unit spacing; McInerney & Terzopoulos 2000).
   Eigen::MatrixX2d alpha(n, 2);
   for (Eigen::Index i = 0; i < n; ++i) {
     alpha.row(i) = 2.0 * contour.row(i) - contour.row(wrap(i - 1)) - contour.row(wrap(i + 1));
@@ -94,6 +97,9 @@ bool TSnake::reparameterize() {
 void TSnake::add_contour(const Contour& contour) {
   if (contour.rows() < 3) {
     throw make_error("T-snake contour has ", contour.rows(), " nodes, needs at least 3");
+  }
+  if (!contour.allFinite()) {
+    throw make_error("T-snake contour has a node that is not finite");
   }
   contours_.push_back(contour);
   reparameterize();

@@ -22,7 +22,7 @@ namespace dnurbs {
 
 /// The parameters of T-snakes (pixel units; TopologyAdaptiveParameters lists them).
 ///
-/// The explicit deformation step of every node (McInerney & Terzopoulos 2000, section 2, the
+/// The explicit deformation step of every node (McInerney & Terzopoulos 2000, the
 /// discrete snake of Terzopoulos, eqs. 1.2-1.5 with mu = 0) is
 ///   x_i <- x_i + (time_step / damping) (-tension alpha_i - rigidity beta_i + rho_i + f_i)
 /// with alpha_i = 2 x_i - x_{i-1} - x_{i+1}, beta_i = 2 alpha_i - alpha_{i-1} - alpha_{i+1},

@@ -52,6 +52,10 @@ TSurface::TSurface(const Volume& volume, VolumeEdgePotential potential,
                      volume.size[2], ", its edge potential ", potential_.samples().size[0], " by ",
                      potential_.samples().size[1], " by ", potential_.samples().size[2]);
   }
+  if (!std::all_of(volume.values.begin(), volume.values.end(),
+                   [](double value) { return std::isfinite(value); })) {
+    throw make_error("T-surface volume has a voxel that is not finite");
+  }
   inside_.assign(static_cast<std::size_t>(grid_.vertex_count()), 0);
   mesh_.name = "t_surface";
   mesh_.vertices.resize(0, 3);

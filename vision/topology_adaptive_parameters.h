@@ -1,7 +1,7 @@
 #pragma once
 // The parameters T-snakes and T-surfaces share: the weights of their explicit deformation step
 // (McInerney & Terzopoulos, T-snakes: Topology adaptive snakes, Medical Image Analysis 4(2)
-// 2000, section 2; Terzopoulos, Deformable Models: Classic, Topology-Adaptive and Generalized
+// 2000; Terzopoulos, Deformable Models: Classic, Topology-Adaptive and Generalized
 // Formulations, eqs. 1.2-1.5 with mu = 0) and the inflation switch F(I).
 
 namespace dnurbs {
@@ -28,7 +28,7 @@ struct TopologyAdaptiveParameters {
   void validate(const char* model, double tension_eigenvalue, double rigidity_eigenvalue) const;
 };
 
-/// The inflation switch F(I) (McInerney & Terzopoulos 2000, section 2): +1 where I >= threshold
+/// The inflation switch F(I) (McInerney & Terzopoulos 2000): +1 where I >= threshold
 /// and -1 elsewhere when band = 0; otherwise the continuous ramp clamp((I - threshold) / band,
 /// -1, 1), which lets a node rest on the threshold contour instead of oscillating about it.
 double inflation_switch(double intensity, double threshold, double band);

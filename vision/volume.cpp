@@ -147,9 +147,10 @@ const std::string& required_field(const std::map<std::string, std::string>& fiel
   return found->second;
 }
 
-/// Sizes and spacings of a 3-D NRRD header.
+/// Sizes and spacings of a 3-D NRRD header. raw_samples is how many samples the payload holds,
+/// checked against the sizes before allocating when the encoding is raw.
 Volume allocate_nrrd_volume(const std::map<std::string, std::string>& fields,
-                            const std::string& path) {
+                            const std::string& path, std::size_t raw_samples) {
   if (required_field(fields, "dimension", path) != "3") {
     throw make_error("NRRD file ", path, ": dimension ", fields.at("dimension"), " is not 3");
   }
@@ -159,6 +160,11 @@ Volume allocate_nrrd_volume(const std::map<std::string, std::string>& fields,
     throw make_error("NRRD file ", path, ": sizes \"", fields.at("sizes"), "\" are not 3 integers");
   }
   check_volume_size(n[0], n[1], n[2], "NRRD file " + path);
+  const auto samples = static_cast<std::size_t>(n[0] * n[1] * n[2]);
+  if (required_field(fields, "encoding", path) == "raw" && raw_samples < samples) {
+    throw make_error("NRRD file ", path, ": raw data holds ", raw_samples, " samples, expected ",
+                     samples);
+  }
   Volume volume(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]));
   if (const auto found = fields.find("spacings"); found != fields.end()) {
     std::istringstream spacings(found->second);
@@ -259,11 +265,12 @@ Volume read_nrrd(const std::string& path) {
     throw make_error("NRRD file ", path, " cannot be opened");
   }
   const auto fields = read_nrrd_header(in, path);
-  Volume volume = allocate_nrrd_volume(fields, path);
   const SampleType type = parse_sample_type(required_field(fields, "type", path), path);
   const std::string& encoding = required_field(fields, "encoding", path);
-  const std::size_t count = volume.values.size();
   std::string payload = read_nrrd_payload(in, fields, path);
+  Volume volume =
+      allocate_nrrd_volume(fields, path, encoding == "raw" ? payload.size() / type.bytes : 0);
+  const std::size_t count = volume.values.size();
   if (encoding == "ascii" || encoding == "text" || encoding == "txt") {
     std::istringstream text(payload);
     for (std::size_t i = 0; i < count; ++i) {

@@ -17,6 +17,11 @@ VolumeEdgePotential::VolumeEdgePotential(const Volume& volume, double sigma, dou
     throw make_error("volume edge potential volume is ", volume.size[0], " by ", volume.size[1],
                      " by ", volume.size[2], ", needs at least 2 per side");
   }
+  for (std::size_t i = 0; i < volume.values.size(); ++i) {
+    if (!std::isfinite(volume.values[i])) {
+      throw make_error("volume edge potential voxel ", i, " (x fastest) is ", volume.values[i]);
+    }
+  }
   smoothed_ = gaussian_smooth(volume, sigma);
   // P = -c |grad(G_sigma * V)| at every voxel (Terzopoulos, below eq. 1.3).
   const std::array<Volume, 3> gradient = smoothed_gradient(volume, sigma);

@@ -151,6 +151,11 @@ TEST(ImageEdgePotential, BadInputIsNamed) {
             std::string::npos);
   EXPECT_NE(error_message([] { ImageEdgePotential(Image(5, 5), 1.0, INFINITY); }).find("c = inf"),
             std::string::npos);
+  Image with_nan(5, 5);
+  with_nan(3, 2) = NAN;
+  EXPECT_NE(
+      error_message([&] { ImageEdgePotential(with_nan, 1.0, 1.0); }).find("pixel (3, 2) is nan"),
+      std::string::npos);
   const ImageEdgePotential potential(Image(5, 5), 1.0, 1.0);
   EXPECT_NE(error_message([&] { potential.value(Eigen::Vector2d(NAN, 1.0)); }).find("not finite"),
             std::string::npos);

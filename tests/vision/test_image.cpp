@@ -83,7 +83,9 @@ TEST(ImageFiles, BadPgmFilesAreNamed) {
   EXPECT_NE(message("P2\n2 2\n70000\n").find("maxval 70000"), std::string::npos);
   EXPECT_NE(message("P2\n2 1\n10\n3 11\n").find("sample 1 is 11, above maxval 10"),
             std::string::npos);
-  EXPECT_NE(message("P5\n4 4\n255\nabc").find("data ends after 3 of 16"), std::string::npos);
+  EXPECT_NE(message("P5\n4 4\n255\nabc").find("data has 3 bytes, expected 16"), std::string::npos);
+  EXPECT_NE(message("P5\n16000 16000\n65535\n").find("data has 0 bytes, expected 512000000"),
+            std::string::npos);  // refused before allocating
   EXPECT_NE(message("P5\n100000 2\n255\n").find("100000 by 2"), std::string::npos);
   EXPECT_NE(message("P2\nx 2\n255\n").find("width is missing or not a number"), std::string::npos);
   EXPECT_NE(message("P2\n99999999999 2\n255\n").find("width is over"), std::string::npos);

@@ -262,6 +262,11 @@ TEST(TSnakeErrors, BadParametersAreNamed) {
   EXPECT_NE(error_message([&] { snake.remove_contour(0); }).find("index 0"), std::string::npos);
   EXPECT_NE(error_message([&] { snake.add_contour(Contour(2, 2)); }).find("2 nodes"),
             std::string::npos);
+  Contour with_nan = Contour::Constant(4, 2, 5.0);
+  with_nan(2, 1) = NAN;
+  EXPECT_NE(error_message([&] { snake.add_contour(with_nan); }).find("not finite"),
+            std::string::npos);
+  EXPECT_TRUE(snake.contours().empty());  // the bad contour was not kept
   const Image other(40, 32);
   EXPECT_NE(error_message([&] { TSnake(other, potential, TSnakeParameters{}); }).find("40 by 32"),
             std::string::npos);

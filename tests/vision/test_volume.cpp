@@ -99,7 +99,8 @@ TEST(NrrdFiles, BadHeadersAreNamed) {
   EXPECT_NE(message("NRRD0004\ntype: uchar\nencoding: bzip2\ndimension: 3\nsizes: 1 1 1\n\n", "x")
                 .find("encoding \"bzip2\""),
             std::string::npos);
-  EXPECT_NE(message(base + "dimension: 3\nsizes: 2 2 2\n\n", "abc").find("3 bytes, expected 8"),
+  EXPECT_NE(message(base + "dimension: 3\nsizes: 2 2 2\n\n", "abc")
+                .find("raw data holds 3 samples, expected 8"),
             std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: short\nencoding: raw\ndimension: 3\nsizes: 1 1 1\n\n", "ab")
                 .find("\"endian\" is missing"),
