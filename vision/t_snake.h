@@ -40,16 +40,18 @@ struct TSnakeParameters : TopologyAdaptiveParameters {};
 class TSnake {
  public:
   /// Throws Error as TopologyAdaptiveParameters::validate (the largest eigenvalues of alpha and
-  /// beta are 4 and 16), for an image whose size differs from the potential's, or a grid with
-  /// fewer than 2 cells per side.
+  /// beta are 4 and 16), for an image whose size differs from the potential's, a pixel that is
+  /// not finite, or a grid with fewer than 2 cells per side.
   TSnake(const Image& image, ImageEdgePotential potential, const TSnakeParameters& parameters);
 
   /// Creates a snake from a closed polygon (#N by 2, N >= 3): the region it winds around
   /// positively joins the inside region (union, so a snake overlapping another merges with it).
+  /// Throws Error for fewer than 3 nodes or a node that is not finite.
   void add_contour(const Contour& contour);
   /// Creates a circular snake (a 64-gon) of `radius` about `center`.
   void add_circle(const Eigen::Vector2d& center, double radius);
-  /// Destroys snake `index` (its region leaves the inside region). Throws Error for a bad index.
+  /// Removes contour `index` and rebuilds the region from the others: removing an outer boundary
+  /// destroys that snake (with its holes), removing a hole fills it. Throws Error for a bad index.
   void remove_contour(int index);
 
   /// One deformation step of every node, followed by the two-phase reparameterization when the

@@ -43,8 +43,8 @@ struct TSurfaceParameters : TopologyAdaptiveParameters {
 class TSurface {
  public:
   /// Throws Error as TopologyAdaptiveParameters::validate (the largest eigenvalues of the
-  /// umbrella alpha and of beta are 2 and 4) or for a volume whose size differs from the
-  /// potential's.
+  /// umbrella alpha and of beta are 2 and 4), for a volume whose size differs from the
+  /// potential's or a voxel that is not finite.
   TSurface(const Volume& volume, VolumeEdgePotential potential,
            const TSurfaceParameters& parameters);
 
