@@ -1,5 +1,6 @@
 #include "vision/t_surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -137,6 +138,35 @@ TEST(TSurfaceTopology, TwoSeedsInOverlappingBallsMergeIntoOneSurface) {
       mesh_topology(surface.mesh().triangles, surface.mesh().vertex_count());
   EXPECT_EQ(merged.components, 1);
   EXPECT_EQ(merged.euler_characteristic, 2);
+}
+
+TEST(TSurfaceTopology, DumbbellAroundTwoBallsSplitsInTwo) {
+  const Eigen::Vector3d left(9.0, 10.0, 10.0);
+  const Eigen::Vector3d right(27.0, 10.0, 10.0);
+  const double radius = 5.0;
+  const Volume volume = coverage_volume(37, 21, 21, [&](const Eigen::Vector3d& p) {
+    return (p - left).norm() <= radius || (p - right).norm() <= radius;
+  });
+  TSurface surface(volume, VolumeEdgePotential(volume, 1.0, 1.0), TSurfaceParameters{});
+  // A capsule of radius 7 from one centre to the other: one surface around both balls.
+  surface.add_implicit([&](const Eigen::Vector3d& p) {
+    const double t =
+        std::clamp((p - left).dot(right - left) / (right - left).squaredNorm(), 0.0, 1.0);
+    return (p - left - t * (right - left)).norm() - 7.0;
+  });
+  EXPECT_EQ(mesh_topology(surface.mesh().triangles, surface.mesh().vertex_count()).components, 1);
+  const SurfaceRecord record = run_checked(surface, 400);
+  EXPECT_TRUE(record.always_manifold) << record.reason;
+  const MeshTopology split = mesh_topology(surface.mesh().triangles, surface.mesh().vertex_count());
+  EXPECT_EQ(split.components, 2);
+  EXPECT_EQ(split.euler_characteristic, 4);  // two spheres
+  const double balls = 2.0 * 4.0 / 3.0 * kPi * radius * radius * radius;
+  std::printf("split balls r = 5: %d steps, volume %.1f vs %.1f\n", record.steps,
+              enclosed_volume(surface.mesh().vertices, surface.mesh().triangles), balls);
+  // Chords of 2-voxel cells on radius 5: l^2 / (8r) ~ 0.1-0.3 voxel, up to ~10 % of the volume
+  // of such small balls.
+  EXPECT_NEAR(enclosed_volume(surface.mesh().vertices, surface.mesh().triangles), balls,
+              0.12 * balls);
 }
 
 TEST(TSurfaceErrors, BadParametersAreNamed) {
