@@ -12,6 +12,8 @@ packages=(
   libsuitesparse-dev     # CHOLMOD: supernodal sparse Cholesky for large blocks (core/sparse_cholesky.h)
   libopenblas-dev        # fast BLAS under CHOLMOD's supernodes (Debian's alternatives switch
                          # libblas.so.3 to OpenBLAS; dnurbs pins it to one thread at run time)
+  libpng-dev             # vision/: PNG images for T-snakes (libpng's simplified API)
+  zlib1g-dev             # vision/: gzip-encoded NRRD volumes for T-surfaces
   libgtest-dev libgmock-dev
   libbenchmark-dev       # bench/
   python3 python3-matplotlib python3-numpy  # PNG previews and bench plots
