@@ -383,49 +383,69 @@ void swung_jacobian_rate(const SwungSurface& surface, double u, double v, int or
   swung_jacobian_rate(profile, trajectory, surface.alpha(), layout, rates.data(), order, result);
 }
 
-void add_swung_hessian(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
-                       double alpha, const SwungLayout& layout, SurfaceQuantity quantity,
-                       const Eigen::Vector3d& lambda, Eigen::MatrixXd& hessian) {
+void swung_hessian_terms(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
+                         double alpha, const SwungLayout& layout, SurfaceQuantity quantity,
+                         const Eigen::Vector3d& lambda, SwungHessianTerms& terms) {
   const auto index = static_cast<size_t>(quantity);
   const int k = kOrderU[index];
   const int l = kOrderV[index];
   const int per = layout.per_control_point;
   const int np = profile.degree + 1;
   const int nt = trajectory.degree + 1;
-  const int trajectory_start = per * np;
+  const bool free = layout.mode == WeightMode::kFree;
   const Eigen::Vector2d lambda_planar = lambda.head<2>();
+  terms.profile_order = k;
+  terms.trajectory_order = l;
   // Between the curves: S^Q_x,y = alpha f g_x,y, so lambda . d^2 S / dp dt =
   // alpha grad_p f (x) grad_t (lambda_x g_x + lambda_y g_y).
+  terms.profile_gradient.setZero(per * np);
+  terms.trajectory_gradient.setZero(per * nt);
   for (int a = 0; a < np; ++a) {
-    for (int cp = 0; cp < per; ++cp) {
-      if (cp == 1) {
-        continue;  // f = p_x does not depend on z
-      }
-      const double df =
-          cp == 0 ? profile.rational(k, a) : profile.weight_column[static_cast<size_t>(k)](0, a);
-      for (int b = 0; b < nt; ++b) {
-        for (int ct = 0; ct < per; ++ct) {
-          const double dg =
-              ct < 2 ? lambda_planar[ct] * trajectory.rational(l, b)
-                     : lambda_planar.dot(trajectory.weight_column[static_cast<size_t>(l)].col(b));
-          const double value = alpha * df * dg;
-          const int row = per * a + cp;
-          const int column = trajectory_start + per * b + ct;
-          hessian(row, column) += value;
-          hessian(column, row) += value;
-        }
-      }
+    terms.profile_gradient[per * a] = alpha * profile.rational(k, a);  // f = p_x: no z
+    if (free) {
+      terms.profile_gradient[per * a + 2] =
+          alpha * profile.weight_column[static_cast<size_t>(k)](0, a);
     }
   }
+  for (int b = 0; b < nt; ++b) {
+    terms.trajectory_gradient.segment<2>(per * b) = lambda_planar * trajectory.rational(l, b);
+    if (free) {
+      terms.trajectory_gradient[per * b + 2] =
+          lambda_planar.dot(trajectory.weight_column[static_cast<size_t>(l)].col(b));
+    }
+  }
+  // Within each curve (free weights only): the profile with mu = (alpha lambda . g, [l == 0]
+  // lambda_z) on (p_x, p_z)^(k), the trajectory with mu = alpha f lambda_planar on t^(l).
+  terms.profile_weight = Eigen::Vector2d(alpha * lambda_planar.dot(trajectory.point.col(l)),
+                                         l == 0 ? lambda.z() : 0.0);
+  terms.trajectory_weight = alpha * profile.point(0, k) * lambda_planar;
+}
+
+void add_planar_curve_hessian(const PlanarCurveSample& sample, int order, const Eigen::Vector2d& mu,
+                              int offset, Eigen::MatrixXd& hessian) {
+  if (order < 0 || order > 2) {
+    throw make_error("planar curve Hessian order ", order, " is outside 0..2");
+  }
+  add_curve_hessian(sample, order, mu, offset, hessian);
+}
+
+void add_swung_hessian(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
+                       double alpha, const SwungLayout& layout, SurfaceQuantity quantity,
+                       const Eigen::Vector3d& lambda, Eigen::MatrixXd& hessian) {
+  SwungHessianTerms terms;
+  swung_hessian_terms(profile, trajectory, alpha, layout, quantity, lambda, terms);
+  const auto rows = terms.profile_gradient.size();
+  const auto columns = terms.trajectory_gradient.size();
+  // The outer product once, added to both blocks: exactly symmetric.
+  const Eigen::MatrixXd cross = terms.profile_gradient * terms.trajectory_gradient.transpose();
+  hessian.block(0, rows, rows, columns) += cross;
+  hessian.block(rows, 0, columns, rows) += cross.transpose();
   if (layout.mode != WeightMode::kFree) {
     return;  // each curve is linear in its own control points
   }
-  // Within each curve: profile with mu = (alpha lambda . g, [l == 0] lambda_z) on (p_x, p_z)^(k),
-  // trajectory with mu = alpha f lambda_planar on t^(l).
-  const double nu = lambda_planar.dot(trajectory.point.col(l));
-  add_curve_hessian(profile, k, Eigen::Vector2d(alpha * nu, l == 0 ? lambda.z() : 0.0), 0, hessian);
-  add_curve_hessian(trajectory, l, alpha * profile.point(0, k) * lambda_planar, trajectory_start,
-                    hessian);
+  add_curve_hessian(profile, terms.profile_order, terms.profile_weight, 0, hessian);
+  add_curve_hessian(trajectory, terms.trajectory_order, terms.trajectory_weight,
+                    static_cast<int>(rows), hessian);
 }
 
 Eigen::SparseMatrix<double> to_sparse_matrix(const SwungJacobian& jacobian,

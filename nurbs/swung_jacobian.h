@@ -149,6 +149,29 @@ void add_swung_hessian(const PlanarCurveSample& profile, const PlanarCurveSample
                        double alpha, const SwungLayout& layout, SurfaceQuantity quantity,
                        const Eigen::Vector3d& lambda, Eigen::MatrixXd& hessian);
 
+/// The pieces of add_swung_hessian, for assemblies that sum them over quantities and Gauss points
+/// before forming matrices:
+///   cross block (profile columns x trajectory columns) = profile_gradient trajectory_gradient^T,
+///   with profile_gradient = alpha grad_p p_x^(k) and trajectory_gradient = grad_t (lambda .
+///   t^(l)), plus (free weights) add_planar_curve_hessian of the profile at order k with
+///   profile_weight and of the trajectory at order l with trajectory_weight.
+struct SwungHessianTerms {
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxSwungColumns, 1> profile_gradient;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxSwungColumns, 1> trajectory_gradient;
+  int profile_order = 0;                                        ///< k
+  int trajectory_order = 0;                                     ///< l
+  Eigen::Vector2d profile_weight = Eigen::Vector2d::Zero();     ///< mu on (p_x, p_z)^(k)
+  Eigen::Vector2d trajectory_weight = Eigen::Vector2d::Zero();  ///< mu on t^(l)
+};
+void swung_hessian_terms(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
+                         double alpha, const SwungLayout& layout, SurfaceQuantity quantity,
+                         const Eigen::Vector3d& lambda, SwungHessianTerms& terms);
+/// Adds mu . d^2 c^(order) / dq_i dq_j of one curve with free weights (3 columns per active
+/// control point: two in-plane coordinates and the weight) starting at local column `offset`;
+/// exactly symmetric. Zero for fixed weights, where the curve is linear in its coordinates.
+void add_planar_curve_hessian(const PlanarCurveSample& sample, int order, const Eigen::Vector2d& mu,
+                              int offset, Eigen::MatrixXd& hessian);
+
 /// The 3 by coordinate_count sparse matrix of one quantity.
 Eigen::SparseMatrix<double> to_sparse_matrix(const SwungJacobian& jacobian,
                                              SurfaceQuantity quantity, int coordinate_count);

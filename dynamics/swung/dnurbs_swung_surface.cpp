@@ -4,36 +4,11 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "dynamics/swung/swung_element_assembly.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 namespace {
-
-// Local column pairs (i, j) of a point's Jacobian: sum over r of J(r, i) J(r, j), the upper
-// triangle computed once and mirrored so that every matrix is exactly symmetric.
-void add_gram(const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxSwungColumns>& J,
-              double scale, int columns, Eigen::MatrixXd& local) {
-  for (int j = 0; j < columns; ++j) {
-    for (int i = 0; i <= j; ++i) {
-      const double value = scale * (J(0, i) * J(0, j) + J(1, i) * J(1, j) + J(2, i) * J(2, j));
-      local(i, j) += value;
-      if (i != j) {
-        local(j, i) += value;
-      }
-    }
-  }
-}
-
-// global(coordinate i, coordinate j) += scale local(i, j).
-void scatter(const SwungJacobian& jacobian, const Eigen::MatrixXd& local, double scale,
-             Eigen::MatrixXd& global) {
-  for (int j = 0; j < jacobian.column_count; ++j) {
-    const int column = jacobian.coordinate[static_cast<size_t>(j)];
-    for (int i = 0; i < jacobian.column_count; ++i) {
-      global(jacobian.coordinate[static_cast<size_t>(i)], column) += scale * local(i, j);
-    }
-  }
-}
 
 // force[coordinate] += sign J^T f over the Jacobian's columns.
 void add_transposed(const SwungJacobian& jacobian, int quantity, const Eigen::Vector3d& f,
@@ -253,62 +228,18 @@ Eigen::Vector3d DNurbsSwungSurface::jacobian_rate_times_velocity(ConstVectorRef 
 // -----------------------------------------------------------------------------------------------
 // Matrices
 
-void DNurbsSwungSurface::add_point_matrices(const PlanarCurveSample& profile,
-                                            const PlanarCurveSample& trajectory,
-                                            const SwungJacobian& jacobian, double weight,
-                                            const double* material, Eigen::MatrixXd& local,
-                                            Eigen::MatrixXd& mass, Eigen::MatrixXd& damping,
-                                            Eigen::MatrixXd& stiffness) const {
-  const int columns = jacobian.column_count;
-  // M and D: mu J^T J and gamma J^T J (Terzopoulos, eq. 1.25).
-  local.topLeftCorner(columns, columns).setZero();
-  add_gram(jacobian.columns[0], weight, columns, local);
-  scatter(jacobian, local, material[0], mass);
-  if (quadrature_.has_damping()) {
-    scatter(jacobian, local, material[1], damping);
-  }
-  // Tangent stiffness d^2 E / dq^2 = sum_Q k_Q (J_Q^T J_Q + sum_c S^Q_c d^2 S^Q_c / dq^2).
-  local.topLeftCorner(columns, columns).setZero();
-  bool any = false;
-  for (int quantity = 1; quantity < kQuantityCount; ++quantity) {
-    if (!quadrature_.has_stiffness(quantity)) {
-      continue;
-    }
-    any = true;
-    const double k = weight * material[1 + quantity];
-    add_gram(jacobian.columns[static_cast<size_t>(quantity)], k, columns, local);
-    if (geometric_stiffness_) {
-      add_swung_hessian(profile, trajectory, surface_.alpha(), layout_,
-                        static_cast<SurfaceQuantity>(quantity),
-                        k * jacobian.point_derivatives[static_cast<size_t>(quantity)], local);
-    }
-  }
-  if (any) {
-    scatter(jacobian, local, 1.0, stiffness);
-  }
-}
-
 void DNurbsSwungSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {
   std::vector<PlanarCurveSample> profile;
   std::vector<PlanarCurveSample> trajectory;
   quadrature_samples(q, profile, trajectory);
   const int n = coordinate_count();
+  const bool with_damping = quadrature_.has_damping();
   Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(n, n);
-  Eigen::MatrixXd damping =
-      Eigen::MatrixXd::Zero(quadrature_.has_damping() ? n : 0, quadrature_.has_damping() ? n : 0);
+  Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(with_damping ? n : 0, with_damping ? n : 0);
   Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(n, n);
-  Eigen::MatrixXd local(kMaxSwungColumns, kMaxSwungColumns);
-  const int order = quadrature_.stiffness_order();
-  SwungJacobian jacobian;
-  for (int i = 0; i < quadrature_.profile_point_count(); ++i) {
-    for (int j = 0; j < quadrature_.trajectory_point_count(); ++j) {
-      const PlanarCurveSample& p = profile[static_cast<size_t>(i)];
-      const PlanarCurveSample& t = trajectory[static_cast<size_t>(j)];
-      swung_jacobian(p, t, surface_.alpha(), layout_, order, jacobian);
-      add_point_matrices(p, t, jacobian, quadrature_.weight(i, j), quadrature_.material(i, j),
-                         local, mass, damping, stiffness);
-    }
-  }
+  SwungElementAssembly assembly(quadrature_, layout_, surface_.alpha(), surface_.profile().degree(),
+                                surface_.trajectory().degree(), geometric_stiffness_);
+  assembly.assemble(profile, trajectory, mass, damping, stiffness);
   if (layout_.mode == WeightMode::kFree) {
     for (int k = 2; k < n; k += 3) {
       mass(k, k) += weight_inertia_;
@@ -316,7 +247,7 @@ void DNurbsSwungSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matr
   }
   fill_from_dense(pattern_, mass, matrices.mass);
   fill_from_dense(pattern_, stiffness, matrices.stiffness);
-  if (quadrature_.has_damping()) {
+  if (with_damping) {
     fill_from_dense(pattern_, damping, matrices.damping);
   } else {
     matrices.damping = SparseMatrix(n, n);

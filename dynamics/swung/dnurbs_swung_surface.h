@@ -164,11 +164,6 @@ class DNurbsSwungSurface : public Model {
                   PlanarCurveSample& trajectory) const;
   void quadrature_samples(ConstVectorRef q, std::vector<PlanarCurveSample>& profile,
                           std::vector<PlanarCurveSample>& trajectory) const;
-  // Adds the point pair's mass (and damping) and stiffness terms to dense accumulators.
-  void add_point_matrices(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
-                          const SwungJacobian& jacobian, double weight, const double* material,
-                          Eigen::MatrixXd& local, Eigen::MatrixXd& mass, Eigen::MatrixXd& damping,
-                          Eigen::MatrixXd& stiffness) const;
 
   SwungSurface surface_;
   SwungLayout layout_;

@@ -40,6 +40,10 @@ class SwungQuadrature {
   /// Gauss points along the profile (N_u) and along the trajectory (N_v).
   int profile_point_count() const { return static_cast<int>(table_u_.parameter.size()); }
   int trajectory_point_count() const { return static_cast<int>(table_v_.parameter.size()); }
+  /// Gauss points per non-empty span along u and v; point i of the profile lies in span
+  /// i / profile_points_per_span() (likewise along v).
+  int profile_points_per_span() const { return table_u_.points_per_span; }
+  int trajectory_points_per_span() const { return table_v_.points_per_span; }
   /// Gauss weight (times the span lengths) of the point pair (i, j).
   double weight(int i, int j) const {
     return table_u_.weight[static_cast<size_t>(i)] * table_v_.weight[static_cast<size_t>(j)];
