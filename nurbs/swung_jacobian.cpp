@@ -205,23 +205,24 @@ void planar_curve_basis(const KnotVector& knots, double u, PlanarCurveSample& sa
 
 void planar_curve_rational(const PlanarControlNet& net, PlanarCurveSample& s) {
   const int n = s.degree + 1;
-  // Weight function W^(d) = sum_a w_a N_a^(d).
+  // Weight function weight_total^(d) = sum_a w_a N_a^(d).
   s.weight_sum.setZero();
   for (int a = 0; a < n; ++a) {
-    const int i = s.control_point[static_cast<size_t>(a)];
+    const std::ptrdiff_t i = s.control_point[static_cast<size_t>(a)];
     s.weight[a] = net.weights[i * net.weight_stride];
     s.control(0, a) = net.positions[i * net.position_stride];
     s.control(1, a) = net.positions[i * net.position_stride + 1];
     s.weight_sum += s.weight[a] * s.basis.col(a);
   }
-  const double W = s.weight_sum[0];
-  // phi_a = N_a / W by the quotient rule (Piegl & Tiller A4.2 on the basis functions).
+  const double weight_total = s.weight_sum[0];
+  // phi_a = N_a / weight_total by the quotient rule (Piegl & Tiller A4.2 on the basis functions).
   s.point.setZero();
   for (int a = 0; a < n; ++a) {
-    s.phi(0, a) = s.basis(0, a) / W;
-    s.phi(1, a) = (s.basis(1, a) - s.weight_sum[1] * s.phi(0, a)) / W;
+    s.phi(0, a) = s.basis(0, a) / weight_total;
+    s.phi(1, a) = (s.basis(1, a) - s.weight_sum[1] * s.phi(0, a)) / weight_total;
     s.phi(2, a) =
-        (s.basis(2, a) - 2.0 * s.weight_sum[1] * s.phi(1, a) - s.weight_sum[2] * s.phi(0, a)) / W;
+        (s.basis(2, a) - 2.0 * s.weight_sum[1] * s.phi(1, a) - s.weight_sum[2] * s.phi(0, a)) /
+        weight_total;
     for (int d = 0; d < 3; ++d) {
       s.rational(d, a) = s.weight[a] * s.phi(d, a);
       s.point.col(d) += s.rational(d, a) * s.control.col(a);
@@ -246,7 +247,7 @@ void planar_curve_rates(const PlanarCurveSample& s, const PlanarControlNet& rate
   homogeneous_second.setZero();
   const bool weights_move = rates.weights != nullptr;
   for (int a = 0; a <= s.degree; ++a) {
-    const int i = s.control_point[static_cast<size_t>(a)];
+    const std::ptrdiff_t i = s.control_point[static_cast<size_t>(a)];
     const Eigen::Vector2d point_rate(rates.positions[i * rates.position_stride],
                                      rates.positions[i * rates.position_stride + 1]);
     const double w_rate = weights_move ? rates.weights[i * rates.weight_stride] : 0.0;
@@ -281,13 +282,13 @@ void planar_curve_rates(const PlanarCurveSample& s, const PlanarControlNet& rate
 void swung_jacobian(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
                     double alpha, const SwungLayout& layout, int order, SwungJacobian& jacobian) {
   const int quantities = quantities_of_order(order);
-  const int per = layout.per_control_point;
+  const Eigen::Index per = layout.per_control_point;
   const bool free = layout.mode == WeightMode::kFree;
   const int np = profile.degree + 1;
   const int nt = trajectory.degree + 1;
   jacobian.order = order;
-  jacobian.profile_column_count = per * np;
-  jacobian.column_count = per * (np + nt);
+  jacobian.profile_column_count = static_cast<int>(per * np);
+  jacobian.column_count = static_cast<int>(per * (np + nt));
   for (int a = 0; a < np; ++a) {
     for (int c = 0; c < per; ++c) {
       jacobian.coordinate[static_cast<size_t>(per * a + c)] =
@@ -307,27 +308,27 @@ void swung_jacobian(const PlanarCurveSample& profile, const PlanarCurveSample& t
     const double h = profile.point(1, k);
     const Eigen::Vector2d g = trajectory.point.col(l);
     const double in_z = l == 0 ? 1.0 : 0.0;  // only S^(k,0) has a z component
-    auto& J = jacobian.columns[static_cast<size_t>(quantity)];
-    J.setZero(3, jacobian.column_count);
+    auto& columns = jacobian.columns[static_cast<size_t>(quantity)];
+    columns.setZero(3, jacobian.column_count);
     jacobian.point_derivatives[static_cast<size_t>(quantity)] =
         Eigen::Vector3d(alpha * f * g.x(), alpha * f * g.y(), in_z * h);
     for (int a = 0; a < np; ++a) {
       const double r = profile.rational(k, a);
-      J.block<2, 1>(0, per * a) = alpha * r * g;
-      J(2, per * a + 1) = in_z * r;
+      columns.block<2, 1>(0, per * a) = alpha * r * g;
+      columns(2, per * a + 1) = in_z * r;
       if (free) {
         const Eigen::Vector2d e = profile.weight_column[static_cast<size_t>(k)].col(a);
-        J.block<2, 1>(0, per * a + 2) = alpha * e.x() * g;
-        J(2, per * a + 2) = in_z * e.y();
+        columns.block<2, 1>(0, per * a + 2) = alpha * e.x() * g;
+        columns(2, per * a + 2) = in_z * e.y();
       }
     }
     for (int b = 0; b < nt; ++b) {
       const int column = per * (np + b);
       const double r = alpha * f * trajectory.rational(l, b);
-      J(0, column) = r;
-      J(1, column + 1) = r;
+      columns(0, column) = r;
+      columns(1, column + 1) = r;
       if (free) {
-        J.block<2, 1>(0, column + 2) =
+        columns.block<2, 1>(0, column + 2) =
             alpha * f * trajectory.weight_column[static_cast<size_t>(l)].col(b);
       }
     }
@@ -389,7 +390,7 @@ void swung_hessian_terms(const PlanarCurveSample& profile, const PlanarCurveSamp
   const auto index = static_cast<size_t>(quantity);
   const int k = kOrderU[index];
   const int l = kOrderV[index];
-  const int per = layout.per_control_point;
+  const Eigen::Index per = layout.per_control_point;
   const int np = profile.degree + 1;
   const int nt = trajectory.degree + 1;
   const bool free = layout.mode == WeightMode::kFree;
@@ -456,12 +457,12 @@ Eigen::SparseMatrix<double> to_sparse_matrix(const SwungJacobian& jacobian,
                      static_cast<int>(index));
   }
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(3 * jacobian.column_count));
-  const auto& J = jacobian.columns[index];
+  triplets.reserve(3 * static_cast<size_t>(jacobian.column_count));
+  const auto& columns = jacobian.columns[index];
   for (int c = 0; c < jacobian.column_count; ++c) {
     for (int r = 0; r < 3; ++r) {
-      if (J(r, c) != 0.0) {
-        triplets.emplace_back(r, jacobian.coordinate[static_cast<size_t>(c)], J(r, c));
+      if (columns(r, c) != 0.0) {
+        triplets.emplace_back(r, jacobian.coordinate[static_cast<size_t>(c)], columns(r, c));
       }
     }
   }

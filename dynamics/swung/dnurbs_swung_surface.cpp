@@ -13,9 +13,9 @@ namespace {
 // force[coordinate] += sign J^T f over the Jacobian's columns.
 void add_transposed(const SwungJacobian& jacobian, int quantity, const Eigen::Vector3d& f,
                     VectorRef force) {
-  const auto& J = jacobian.columns[static_cast<size_t>(quantity)];
+  const auto& columns = jacobian.columns[static_cast<size_t>(quantity)];
   for (int c = 0; c < jacobian.column_count; ++c) {
-    force[jacobian.coordinate[static_cast<size_t>(c)]] += J.col(c).dot(f);
+    force[jacobian.coordinate[static_cast<size_t>(c)]] += columns.col(c).dot(f);
   }
 }
 
@@ -160,14 +160,14 @@ DNurbsSwungSurface::DNurbsSwungSurface(const SwungSurface& surface,
 // -----------------------------------------------------------------------------------------------
 // Samples and kinematics
 
-void DNurbsSwungSurface::check_size(ConstVectorRef q, const char* what) const {
+void DNurbsSwungSurface::check_size(const ConstVectorRef& q, const char* what) const {
   if (q.size() != coordinate_count()) {
     throw make_error(what, " vector has ", q.size(), " entries, the swung surface has ",
                      coordinate_count());
   }
 }
 
-void DNurbsSwungSurface::samples_at(ConstVectorRef q, const Eigen::Vector2d& u,
+void DNurbsSwungSurface::samples_at(const ConstVectorRef& q, const Eigen::Vector2d& u,
                                     PlanarCurveSample& profile,
                                     PlanarCurveSample& trajectory) const {
   check_size(q, "coordinate");
@@ -178,7 +178,7 @@ void DNurbsSwungSurface::samples_at(ConstVectorRef q, const Eigen::Vector2d& u,
                         trajectory);
 }
 
-void DNurbsSwungSurface::quadrature_samples(ConstVectorRef q,
+void DNurbsSwungSurface::quadrature_samples(const ConstVectorRef& q,
                                             std::vector<PlanarCurveSample>& profile,
                                             std::vector<PlanarCurveSample>& trajectory) const {
   check_size(q, "coordinate");
@@ -186,7 +186,7 @@ void DNurbsSwungSurface::quadrature_samples(ConstVectorRef q,
                      profile, trajectory);
 }
 
-void DNurbsSwungSurface::jacobian(ConstVectorRef q, const Eigen::Vector2d& u, int order,
+void DNurbsSwungSurface::jacobian(const ConstVectorRef& q, const Eigen::Vector2d& u, int order,
                                   SwungJacobian& jacobian) const {
   PlanarCurveSample profile;
   PlanarCurveSample trajectory;
@@ -194,7 +194,7 @@ void DNurbsSwungSurface::jacobian(ConstVectorRef q, const Eigen::Vector2d& u, in
   swung_jacobian(profile, trajectory, surface_.alpha(), layout_, order, jacobian);
 }
 
-void DNurbsSwungSurface::jacobian_rate(ConstVectorRef q, ConstVectorRef qd,
+void DNurbsSwungSurface::jacobian_rate(const ConstVectorRef& q, const ConstVectorRef& qd,
                                        const Eigen::Vector2d& u, int order,
                                        std::array<Eigen::Vector3d, 6>& rates) const {
   check_size(qd, "velocity");
@@ -205,16 +205,16 @@ void DNurbsSwungSurface::jacobian_rate(ConstVectorRef q, ConstVectorRef qd,
 }
 
 Eigen::Vector3d DNurbsSwungSurface::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
-  SwungJacobian J;
-  jacobian(q, u, 0, J);
-  return J.point_derivatives[0];
+  SwungJacobian point;
+  jacobian(q, u, 0, point);
+  return point.point_derivatives[0];
 }
 
 SparseMatrix DNurbsSwungSurface::position_jacobian(ConstVectorRef q,
                                                    const Eigen::Vector2d& u) const {
-  SwungJacobian J;
-  jacobian(q, u, 0, J);
-  return to_sparse_matrix(J, SurfaceQuantity::kPoint, coordinate_count());
+  SwungJacobian point;
+  jacobian(q, u, 0, point);
+  return to_sparse_matrix(point, SurfaceQuantity::kPoint, coordinate_count());
 }
 
 Eigen::Vector3d DNurbsSwungSurface::jacobian_rate_times_velocity(ConstVectorRef q,
@@ -335,9 +335,9 @@ void DNurbsSwungSurface::add_inertial_force(ConstVectorRef q, ConstVectorRef qd,
 
 void DNurbsSwungSurface::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u,
                                          const Eigen::Vector3d& f, VectorRef force) const {
-  SwungJacobian J;
-  jacobian(q, u, 0, J);
-  add_transposed(J, 0, f, force);
+  SwungJacobian point;
+  jacobian(q, u, 0, point);
+  add_transposed(point, 0, f, force);
 }
 
 void DNurbsSwungSurface::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
@@ -431,7 +431,7 @@ void DNurbsSwungSurface::fix_poles() {
   }
 }
 
-SwungSurface DNurbsSwungSurface::surface(ConstVectorRef q) const {
+SwungSurface DNurbsSwungSurface::surface(const ConstVectorRef& q) const {
   check_size(q, "coordinate");
   return swung_surface_at(surface_, layout_.mode, q);
 }

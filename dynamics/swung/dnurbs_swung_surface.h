@@ -146,23 +146,23 @@ class DNurbsSwungSurface : public Model {
   void fix_poles();
 
   /// The surface at coordinates q, and the one the model was built from.
-  SwungSurface surface(ConstVectorRef q) const;
+  SwungSurface surface(const ConstVectorRef& q) const;
   const SwungSurface& initial_surface() const { return surface_; }
   /// Jacobians of S and its parametric derivatives up to `order` (0..2) at (u, v) and state q,
   /// and Jdot qd of each: what surface point, normal and tangent constraints need.
-  void jacobian(ConstVectorRef q, const Eigen::Vector2d& u, int order,
+  void jacobian(const ConstVectorRef& q, const Eigen::Vector2d& u, int order,
                 SwungJacobian& jacobian) const;
-  void jacobian_rate(ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u, int order,
-                     std::array<Eigen::Vector3d, 6>& rates) const;
+  void jacobian_rate(const ConstVectorRef& q, const ConstVectorRef& qd, const Eigen::Vector2d& u,
+                     int order, std::array<Eigen::Vector3d, 6>& rates) const;
   /// Area of the parametric domain.
   double parametric_measure() const;
 
  private:
-  void check_size(ConstVectorRef q, const char* what) const;
+  void check_size(const ConstVectorRef& q, const char* what) const;
   // Rational samples of both curves at a parameter / at every Gauss point, at state q.
-  void samples_at(ConstVectorRef q, const Eigen::Vector2d& u, PlanarCurveSample& profile,
+  void samples_at(const ConstVectorRef& q, const Eigen::Vector2d& u, PlanarCurveSample& profile,
                   PlanarCurveSample& trajectory) const;
-  void quadrature_samples(ConstVectorRef q, std::vector<PlanarCurveSample>& profile,
+  void quadrature_samples(const ConstVectorRef& q, std::vector<PlanarCurveSample>& profile,
                           std::vector<PlanarCurveSample>& trajectory) const;
 
   SwungSurface surface_;

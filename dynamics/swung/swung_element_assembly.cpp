@@ -17,12 +17,14 @@ SwungElementAssembly::SwungElementAssembly(const SwungQuadrature& quadrature,
       order_(quadrature.stiffness_order()),
       profile_columns_(layout.per_control_point * (profile_degree + 1)),
       columns_(layout.per_control_point * (profile_degree + trajectory_degree + 2)) {
-  const int points = quadrature.profile_points_per_span() * quadrature.trajectory_points_per_span();
+  const Eigen::Index points = static_cast<Eigen::Index>(quadrature.profile_points_per_span()) *
+                              quadrature.trajectory_points_per_span();
+  const Eigen::Index quantities = kQuantityCount - 1;
   mass_stack_.resize(3 * points, columns_);
   damping_stack_.resize(quadrature.has_damping() ? 3 * points : 0, columns_);
-  stiffness_stack_.resize(3 * (kQuantityCount - 1) * points, columns_);
-  profile_factors_.resize((kQuantityCount - 1) * points, profile_columns_);
-  trajectory_factors_.resize((kQuantityCount - 1) * points, columns_ - profile_columns_);
+  stiffness_stack_.resize(3 * quantities * points, columns_);
+  profile_factors_.resize(quantities * points, profile_columns_);
+  trajectory_factors_.resize(quantities * points, columns_ - profile_columns_);
   profile_weights_.resize(static_cast<size_t>(quadrature.profile_points_per_span()));
   trajectory_weights_.resize(static_cast<size_t>(quadrature.trajectory_points_per_span()));
   for (Eigen::MatrixXd* m : {&mass_, &damping_, &gram_, &hessian_}) {
@@ -93,14 +95,16 @@ void SwungElementAssembly::finish(const std::vector<PlanarCurveSample>& profile,
     const int per_u = quadrature_.profile_points_per_span();
     const int per_v = quadrature_.trajectory_points_per_span();
     for (int g = 0; g < per_u; ++g) {
+      const int point = su * per_u + g;
       for (int d = 0; d < 3; ++d) {
-        add_planar_curve_hessian(profile[static_cast<size_t>(su * per_u + g)], d,
+        add_planar_curve_hessian(profile[static_cast<size_t>(point)], d,
                                  profile_weights_[static_cast<size_t>(g)].col(d), 0, hessian_);
       }
     }
     for (int g = 0; g < per_v; ++g) {
+      const int point = sv * per_v + g;
       for (int d = 0; d < 3; ++d) {
-        add_planar_curve_hessian(trajectory[static_cast<size_t>(sv * per_v + g)], d,
+        add_planar_curve_hessian(trajectory[static_cast<size_t>(point)], d,
                                  trajectory_weights_[static_cast<size_t>(g)].col(d),
                                  profile_columns_, hessian_);
       }

@@ -18,10 +18,12 @@ std::vector<PlanarCurveSample> cached_bases(const DirectionQuadrature& table) {
       sample.degree = p;
       sample.basis.setZero();
       for (int a = 0; a <= p; ++a) {
+        const int window = s * (p + 1) + a;
         sample.control_point[static_cast<size_t>(a)] =
-            table.control_point[static_cast<size_t>(s * (p + 1) + a)];
+            table.control_point[static_cast<size_t>(window)];
         for (int d = 0; d < 3; ++d) {
-          sample.basis(d, a) = table.basis[static_cast<size_t>((i * 3 + d) * (p + 1) + a)];
+          const int entry = (i * 3 + d) * (p + 1) + a;
+          sample.basis(d, a) = table.basis[static_cast<size_t>(entry)];
         }
       }
     }
@@ -47,11 +49,12 @@ SwungQuadrature::SwungQuadrature(const SwungSurface& surface, int points_per_spa
   }
   const int nu = profile_point_count();
   const int nv = trajectory_point_count();
-  material_.assign(static_cast<size_t>(nu * nv * kSwungMaterialStride), 0.0);
+  material_.assign(static_cast<size_t>(nu) * static_cast<size_t>(nv) * kSwungMaterialStride, 0.0);
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const Eigen::Vector2d u = parameter(i, j);
-      double* m = &material_[static_cast<size_t>((i * nv + j) * kSwungMaterialStride)];
+      const int point = i * nv + j;
+      double* m = &material_[static_cast<size_t>(point) * kSwungMaterialStride];
       m[0] = material.mass_density.checked(u, "mass density", true);
       m[1] = material.damping_density.checked(u, "damping density", true);
       for (int q = 1; q < kQuantityCount; ++q) {

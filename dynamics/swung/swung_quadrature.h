@@ -53,8 +53,8 @@ class SwungQuadrature {
   }
   /// kSwungMaterialStride material values of the point pair (i, j).
   const double* material(int i, int j) const {
-    return &material_[static_cast<size_t>((i * trajectory_point_count() + j) *
-                                          kSwungMaterialStride)];
+    const int point = i * trajectory_point_count() + j;
+    return &material_[static_cast<size_t>(point) * kSwungMaterialStride];
   }
   bool has_damping() const { return has_damping_; }
   /// True if the stiffness coefficient of quantity 1..5 is not the constant 0.

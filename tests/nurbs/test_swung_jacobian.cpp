@@ -1,6 +1,6 @@
-// Tests of nurbs/swung_jacobian.h: the Jacobians J, J_u, J_v, J_uu, J_uv, J_vv, Jdot qd and the
-// second derivatives of the swung surface with respect to its coordinates, all against finite
-// differences of the surface, for fixed and free weights; the scaling gauge; the layout.
+// Tests of nurbs/swung_jacobian.h: the Jacobians dense_jacobian, J_u, J_v, J_uu, J_uv, J_vv, Jdot
+// qd and the second derivatives of the swung surface with respect to its coordinates, all against
+// finite differences of the surface, for fixed and free weights; the scaling gauge; the layout.
 
 #include "nurbs/swung_jacobian.h"
 
@@ -36,7 +36,7 @@ std::vector<JacobianCase> jacobian_cases() {
           {"free weights, torus", swung_torus(2.0, 0.7), WeightMode::kFree}};
 }
 
-const std::array<Eigen::Vector2d, 3> kParameters = {
+const std::array<Eigen::Vector2d, 3> sample_parameters = {
     Eigen::Vector2d(0.12, 0.67), Eigen::Vector2d(0.5, 0.05), Eigen::Vector2d(0.91, 0.38)};
 
 // S^Q, Q = S, S_u, S_v, S_uu, S_uv, S_vv, of the surface at coordinates q.
@@ -66,7 +66,7 @@ TEST(SwungJacobian, EveryQuantityMatchesFiniteDifferencesOfTheSurface) {
         n, (c.mode == WeightMode::kFree ? 3 : 2) * (c.surface.profile().control_point_count() +
                                                     c.surface.trajectory().control_point_count()));
     const double h = 1e-6;
-    for (const Eigen::Vector2d& uv : kParameters) {
+    for (const Eigen::Vector2d& uv : sample_parameters) {
       const SwungJacobian jacobian = jacobian_at(c, q, uv);
       const std::array<Eigen::Vector3d, 6> values = quantities_at(c, q, uv);
       for (int quantity = 0; quantity < 6; ++quantity) {
@@ -74,10 +74,10 @@ TEST(SwungJacobian, EveryQuantityMatchesFiniteDifferencesOfTheSurface) {
                    values[static_cast<size_t>(quantity)])
                       .norm(),
                   1e-13 * (1.0 + values[static_cast<size_t>(quantity)].norm()));
-        const Eigen::MatrixXd J = dense(jacobian, quantity, n);
+        const Eigen::MatrixXd dense_jacobian = dense(jacobian, quantity, n);
         double scale = 1.0;
         for (int k = 0; k < n; ++k) {
-          scale = std::max(scale, J.col(k).norm());
+          scale = std::max(scale, dense_jacobian.col(k).norm());
         }
         for (int k = 0; k < n; ++k) {
           Eigen::VectorXd plus = q;
@@ -89,7 +89,7 @@ TEST(SwungJacobian, EveryQuantityMatchesFiniteDifferencesOfTheSurface) {
                                      (2 * h);
           // Central difference: O(h^2) truncation (~1e-12 |d^3 S|) + O(1e-16 |S^Q| / h)
           // round-off (~1e-10 |S^Q|), relative to the largest column.
-          EXPECT_LT((J.col(k) - fd).norm(), 1e-8 * scale)
+          EXPECT_LT((dense_jacobian.col(k) - fd).norm(), 1e-8 * scale)
               << c.name << ", quantity " << quantity << ", coordinate " << k << " at "
               << uv.transpose();
         }
@@ -105,14 +105,14 @@ TEST(SwungJacobian, JdotTimesVelocityMatchesFiniteDifferencesOfTheJacobian) {
     std::srand(5);
     Eigen::VectorXd qd = Eigen::VectorXd::Random(n);
     const double h = 1e-5;
-    for (const Eigen::Vector2d& uv : kParameters) {
+    for (const Eigen::Vector2d& uv : sample_parameters) {
       std::array<Eigen::Vector3d, 6> rate;
       swung_jacobian_rate(swung_surface_at(c.surface, c.mode, q), uv.x(), uv.y(), 2, c.mode, qd,
                           rate);
       const SwungJacobian plus = jacobian_at(c, q + h * qd, uv);
       const SwungJacobian minus = jacobian_at(c, q - h * qd, uv);
       for (int quantity = 0; quantity < 6; ++quantity) {
-        // Jdot qd = d/ds [J(q + s qd)] qd at s = 0.
+        // Jdot qd = d/ds [dense_jacobian(q + s qd)] qd at s = 0.
         const Eigen::Vector3d fd =
             (dense(plus, quantity, n) * qd - dense(minus, quantity, n) * qd) / (2 * h);
         // O(h^2) truncation with third derivatives of size ~1e2 (~1e-8) + round-off ~1e-11.
@@ -135,7 +135,7 @@ TEST(SwungJacobian, HessianContractionMatchesFiniteDifferencesOfTheJacobian) {
     const int n = static_cast<int>(q.size());
     const Eigen::Vector3d lambda(0.7, -1.1, 0.4);
     const double h = 1e-6;
-    for (const Eigen::Vector2d& uv : kParameters) {
+    for (const Eigen::Vector2d& uv : sample_parameters) {
       const SwungSurface surface = swung_surface_at(c.surface, c.mode, q);
       PlanarCurveSample profile;
       PlanarCurveSample trajectory;
@@ -159,7 +159,7 @@ TEST(SwungJacobian, HessianContractionMatchesFiniteDifferencesOfTheJacobian) {
                    jacobian.coordinate[static_cast<size_t>(j)]) += local(i, j);
           }
         }
-        // Column k of sum_c lambda_c d^2 S_c / dq dq = d/dq_k (J^T lambda).
+        // Column k of sum_c lambda_c d^2 S_c / dq dq = d/dq_k (dense_jacobian^T lambda).
         for (int k = 0; k < n; ++k) {
           Eigen::VectorXd plus = q;
           Eigen::VectorXd minus = q;
@@ -168,7 +168,8 @@ TEST(SwungJacobian, HessianContractionMatchesFiniteDifferencesOfTheJacobian) {
           const Eigen::VectorXd fd = (dense(jacobian_at(c, plus, uv), quantity, n).transpose() -
                                       dense(jacobian_at(c, minus, uv), quantity, n).transpose()) *
                                      lambda / (2 * h);
-          // O(h^2) truncation + O(1e-16 |J| / h) round-off, |J| up to ~1e2.
+          // O(h^2) truncation + O(1e-16 |dense_jacobian| / h) round-off, |dense_jacobian| up to
+          // ~1e2.
           EXPECT_LT((global.col(k) - fd).norm(), 1e-7 * (1.0 + fd.norm()))
               << c.name << ", quantity " << quantity << ", coordinate " << k;
         }
@@ -189,12 +190,14 @@ TEST(SwungJacobian, ScalingGaugeDirectionDoesNotMoveTheSurface) {
     for (int j = 0; j < layout.trajectory_count; ++j) {
       gauge.segment<2>(layout.trajectory_offset(j)) = -q.segment<2>(layout.trajectory_offset(j));
     }
-    for (const Eigen::Vector2d& uv : kParameters) {
+    for (const Eigen::Vector2d& uv : sample_parameters) {
       const SwungJacobian jacobian = jacobian_at(c, q, uv);
       for (int quantity = 0; quantity < 6; ++quantity) {
-        const Eigen::MatrixXd J = dense(jacobian, quantity, static_cast<int>(q.size()));
+        const Eigen::MatrixXd dense_jacobian =
+            dense(jacobian, quantity, static_cast<int>(q.size()));
         // alpha (R_a x_a g - f R_b X_b) = alpha (f g - f g): cancels up to rounding.
-        EXPECT_LT((J * gauge).norm(), 1e-13 * J.norm() * gauge.norm()) << c.name;
+        EXPECT_LT((dense_jacobian * gauge).norm(), 1e-13 * dense_jacobian.norm() * gauge.norm())
+            << c.name;
       }
     }
   }

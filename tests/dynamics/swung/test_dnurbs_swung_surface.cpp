@@ -70,7 +70,7 @@ Eigen::VectorXd perturbed(const DNurbsSwungSurface& model, unsigned seed) {
   return q;
 }
 
-// C = dQ/dq: the tensor-product twin's coordinates Q(q) (control points (alpha x_i X_j,
+// chain = dQ/dq: the tensor-product twin's coordinates Q(q) (control points (alpha x_i X_j,
 // alpha x_i Y_j, z_i) and, for free weights, w_i W_j) differentiated by the swung coordinates.
 Eigen::MatrixXd twin_chain_rule(const DNurbsSwungSurface& model, const Eigen::VectorXd& q) {
   const SwungLayout& layout = model.layout();
@@ -78,24 +78,25 @@ Eigen::MatrixXd twin_chain_rule(const DNurbsSwungSurface& model, const Eigen::Ve
   const bool free = layout.mode == WeightMode::kFree;
   const int per_node = free ? 4 : 3;
   const int n = layout.trajectory_count;
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(layout.profile_count * n * per_node, q.size());
+  Eigen::MatrixXd chain = Eigen::MatrixXd::Zero(
+      static_cast<Eigen::Index>(layout.profile_count) * n * per_node, q.size());
   for (int i = 0; i < layout.profile_count; ++i) {
     const int p = layout.profile_offset(i);
     for (int j = 0; j < n; ++j) {
       const int t = layout.trajectory_offset(j);
       const int row = (i * n + j) * per_node;
-      C(row, p) = alpha * q[t];
-      C(row + 1, p) = alpha * q[t + 1];
-      C(row + 2, p + 1) = 1.0;
-      C(row, t) = alpha * q[p];
-      C(row + 1, t + 1) = alpha * q[p];
+      chain(row, p) = alpha * q[t];
+      chain(row + 1, p) = alpha * q[t + 1];
+      chain(row + 2, p + 1) = 1.0;
+      chain(row, t) = alpha * q[p];
+      chain(row + 1, t + 1) = alpha * q[p];
       if (free) {
-        C(row + 3, p + 2) = q[t + 2];
-        C(row + 3, t + 2) = q[p + 2];
+        chain(row + 3, p + 2) = q[t + 2];
+        chain(row + 3, t + 2) = q[p + 2];
       }
     }
   }
-  return C;
+  return chain;
 }
 
 TEST(SwungModel, MatricesAndForcesEqualTheTensorProductTwinByTheChainRule) {
@@ -106,42 +107,42 @@ TEST(SwungModel, MatricesAndForcesEqualTheTensorProductTwinByTheChainRule) {
     DNurbsSettings twin_settings;
     twin_settings.weight_mode = c.mode;
     const DNurbsSurface twin(swung.surface(q).to_nurbs_surface(), plate_material(), twin_settings);
-    const Eigen::VectorXd Q = twin.initial_coordinates();
-    const Eigen::MatrixXd C = twin_chain_rule(swung, q);
+    const Eigen::VectorXd twin_q = twin.initial_coordinates();
+    const Eigen::MatrixXd chain = twin_chain_rule(swung, q);
     EXPECT_EQ(swung.coordinate_count(),
               (c.mode == WeightMode::kFree ? 3 : 2) *
                   (swung.layout().profile_count + swung.layout().trajectory_count));
     ModelMatrices a;
     ModelMatrices b;
     swung.assemble_matrices(q, a);
-    twin.assemble_matrices(Q, b);
-    const Eigen::MatrixXd M(a.mass);
-    const Eigen::MatrixXd expected_mass = C.transpose() * Eigen::MatrixXd(b.mass) * C;
-    // J_swung = J_twin C at every Gauss point: the same sums in another order (round-off).
-    EXPECT_LT((M - expected_mass).norm(), 1e-13 * expected_mass.norm()) << c.name;
-    EXPECT_EQ(M, M.transpose()) << c.name;  // symmetric by construction
-    const Eigen::MatrixXd expected_damping = C.transpose() * Eigen::MatrixXd(b.damping) * C;
+    twin.assemble_matrices(twin_q, b);
+    const Eigen::MatrixXd mass(a.mass);
+    const Eigen::MatrixXd expected_mass = chain.transpose() * Eigen::MatrixXd(b.mass) * chain;
+    // J_swung = J_twin chain at every Gauss point: the same sums in another order (round-off).
+    EXPECT_LT((mass - expected_mass).norm(), 1e-13 * expected_mass.norm()) << c.name;
+    EXPECT_EQ(mass, mass.transpose()) << c.name;  // symmetric by construction
+    const Eigen::MatrixXd expected_damping = chain.transpose() * Eigen::MatrixXd(b.damping) * chain;
     EXPECT_LT((Eigen::MatrixXd(a.damping) - expected_damping).norm(),
               1e-13 * expected_damping.norm())
         << c.name;
-    // E(q) = E_twin(Q(q)) and f_int = C^T f_int,twin.
-    EXPECT_NEAR(swung.potential_energy(q), twin.potential_energy(Q),
-                1e-13 * twin.potential_energy(Q))
+    // E(q) = E_twin(Q(q)) and f_int = chain^T f_int,twin.
+    EXPECT_NEAR(swung.potential_energy(q), twin.potential_energy(twin_q),
+                1e-13 * twin.potential_energy(twin_q))
         << c.name;
     Eigen::VectorXd f = Eigen::VectorXd::Zero(q.size());
-    Eigen::VectorXd f_twin = Eigen::VectorXd::Zero(Q.size());
+    Eigen::VectorXd f_twin = Eigen::VectorXd::Zero(twin_q.size());
     swung.add_internal_force(q, f);
-    twin.add_internal_force(Q, f_twin);
-    EXPECT_LT((f - C.transpose() * f_twin).norm(), 1e-12 * f.norm()) << c.name;
-    // Applied forces: gravity, pressure and a point force, each C^T of the twin's.
+    twin.add_internal_force(twin_q, f_twin);
+    EXPECT_LT((f - chain.transpose() * f_twin).norm(), 1e-12 * f.norm()) << c.name;
+    // Applied forces: gravity, pressure and a point force, each chain^T of the twin's.
     for (const Force& force :
          {gravity(Eigen::Vector3d(0.3, -0.2, -9.81)), pressure(2.5),
           point_force(Eigen::Vector2d(0.37, 0.81), Eigen::Vector3d(1, 2, 3))}) {
       f.setZero();
       f_twin.setZero();
       force(swung, 0.0, q, Eigen::VectorXd::Zero(q.size()), f);
-      force(twin, 0.0, Q, Eigen::VectorXd::Zero(Q.size()), f_twin);
-      EXPECT_LT((f - C.transpose() * f_twin).norm(), 1e-12 * (1.0 + f.norm())) << c.name;
+      force(twin, 0.0, twin_q, Eigen::VectorXd::Zero(twin_q.size()), f_twin);
+      EXPECT_LT((f - chain.transpose() * f_twin).norm(), 1e-12 * (1.0 + f.norm())) << c.name;
     }
   }
 }
@@ -152,7 +153,7 @@ TEST(SwungModel, PositionJacobianAndJdotTimesVelocityMatchFiniteDifferences) {
     const Eigen::VectorXd q = perturbed(model, 5);
     const Eigen::VectorXd qd = random_vector(q.size(), 7);
     for (const Eigen::Vector2d& u : {Eigen::Vector2d(0.1, 0.2), Eigen::Vector2d(0.66, 0.93)}) {
-      const Eigen::MatrixXd L(model.position_jacobian(q, u));
+      const Eigen::MatrixXd position_jacobian(model.position_jacobian(q, u));
       const double h = 1e-6;
       for (int k = 0; k < q.size(); ++k) {
         Eigen::VectorXd plus = q;
@@ -161,7 +162,7 @@ TEST(SwungModel, PositionJacobianAndJdotTimesVelocityMatchFiniteDifferences) {
         minus[k] -= h;
         const Eigen::Vector3d fd = (model.position(plus, u) - model.position(minus, u)) / (2 * h);
         // O(h^2) truncation (~1e-12) + O(1e-16 / h) round-off (~1e-10).
-        EXPECT_LT((L.col(k) - fd).norm(), 1e-9) << c.name << " coordinate " << k;
+        EXPECT_LT((position_jacobian.col(k) - fd).norm(), 1e-9) << c.name << " coordinate " << k;
       }
       const double s = 1e-5;
       const Eigen::Vector3d fd = (model.position_jacobian(q + s * qd, u) * qd -
@@ -214,8 +215,8 @@ TEST(SwungModel, InternalForceIsMinusEnergyGradientAndStiffnessIsItsJacobian) {
       model.add_internal_force(q, force);
       ModelMatrices matrices;
       model.assemble_matrices(q, matrices);
-      const Eigen::MatrixXd K(matrices.stiffness);
-      EXPECT_EQ(K, K.transpose());
+      const Eigen::MatrixXd stiffness(matrices.stiffness);
+      EXPECT_EQ(stiffness, stiffness.transpose());
       const double energy = model.potential_energy(q);
       const double h = 1e-6;
       Eigen::MatrixXd tangent(q.size(), q.size());
@@ -237,15 +238,16 @@ TEST(SwungModel, InternalForceIsMinusEnergyGradientAndStiffnessIsItsJacobian) {
         model.add_internal_force(minus, f_minus);
         tangent.col(k) = -(f_plus - f_minus) / (2 * h);
       }
-      const double error = (K - tangent).norm() / tangent.norm();
+      const double error = (stiffness - tangent).norm() / tangent.norm();
       if (geometric) {
         // The exact tangent: FD truncation O(h^2) + round-off O(1e-16 |f| / h).
         EXPECT_LT(error, 1e-8) << c.name;
       } else {
         // Gauss-Newton drops sum_c S_c d^2 S_c / dq^2, a term of the size of K itself here.
         EXPECT_GT(error, 1e-3) << c.name;
-        EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues().minCoeff(),
-                  -1e-12 * K.norm())
+        EXPECT_GT(
+            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(stiffness).eigenvalues().minCoeff(),
+            -1e-12 * stiffness.norm())
             << c.name;  // positive semi-definite
       }
     }
@@ -261,7 +263,7 @@ TEST(SwungModel, MassIsPositiveDefiniteOnceTheGaugesAreFixed) {
     const Eigen::VectorXd q = model.initial_coordinates();
     ModelMatrices matrices;
     model.assemble_matrices(q, matrices);
-    const Eigen::MatrixXd M(matrices.mass);
+    const Eigen::MatrixXd mass(matrices.mass);
     EXPECT_TRUE(ungauged.fixed_coordinates().empty());
     EXPECT_EQ(model.fixed_coordinates().size(), c.mode == WeightMode::kFree ? 3U : 1U);
     // The gauge directions: scaling (x_i, -X_j, -Y_j) and each curve's weights (w_i), (W_j).
@@ -284,7 +286,7 @@ TEST(SwungModel, MassIsPositiveDefiniteOnceTheGaugesAreFixed) {
     }
     for (const Eigen::VectorXd& gauge : gauges) {
       // J gauge = 0 at every point, so M gauge = 0 up to round-off.
-      EXPECT_LT((M * gauge).norm(), 1e-14 * M.norm() * gauge.norm()) << c.name;
+      EXPECT_LT((mass * gauge).norm(), 1e-14 * mass.norm() * gauge.norm()) << c.name;
     }
     // Eliminate the fixed coordinates: what remains is symmetric positive definite.
     std::vector<int> free_indices;
@@ -294,10 +296,10 @@ TEST(SwungModel, MassIsPositiveDefiniteOnceTheGaugesAreFixed) {
         free_indices.push_back(k);
       }
     }
-    const Eigen::MatrixXd reduced = M(free_indices, free_indices);
+    const Eigen::MatrixXd reduced = mass(free_indices, free_indices);
     const Eigen::VectorXd eigenvalues =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(reduced).eigenvalues();
-    const Eigen::VectorXd full = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues();
+    const Eigen::VectorXd full = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(mass).eigenvalues();
     std::cout << c.name << ": reduced M eigenvalues " << eigenvalues.minCoeff() << " .. "
               << eigenvalues.maxCoeff() << "; full M smallest " << full.minCoeff() << "\n";
     // Well away from zero: the smallest eigenvalue of the reduced M is measured at 1e-6..1e-4 of
@@ -477,16 +479,16 @@ TEST(SwungEgg, SymmetricForcesKeepItRotationallySymmetric) {
   DNurbsSwungSurface model(swung_sphere(1.0), material);
   model.fix_poles();
   System system(model);
-  system.add_force(
-      0, [](const Model& m, double, ConstVectorRef q, ConstVectorRef, VectorRef force) {
-        m.add_distributed_force(
-            q,
-            [](const MaterialSample& s) -> Eigen::Vector3d {
-              // S_u x S_v points inward on the swung sphere.
-              return -0.3 * (1.0 + s.parameter.x()) * s.tangent_u.cross(s.tangent_v).normalized();
-            },
-            force);
-      });
+  system.add_force(0, [](const Model& m, double, const ConstVectorRef& q, const ConstVectorRef&,
+                         const VectorRef& force) {
+    m.add_distributed_force(
+        q,
+        [](const MaterialSample& s) -> Eigen::Vector3d {
+          // S_u x S_v points inward on the swung sphere.
+          return -0.3 * (1.0 + s.parameter.x()) * s.tangent_u.cross(s.tangent_v).normalized();
+        },
+        force);
+  });
   system.add_force(0, gravity(Eigen::Vector3d(0.0, 0.0, -0.1)));
   Integrator integrator;  // Newmark, linearly implicit
   for (int k = 0; k < 300; ++k) {
@@ -500,10 +502,10 @@ TEST(SwungEgg, SymmetricForcesKeepItRotationallySymmetric) {
   EXPECT_LT(asymmetry, 1e-13);
   // The trajectory only scales: T = lambda T0 up to round-off.
   const int start = model.layout().trajectory_offset(0);
-  const Eigen::VectorXd T = q.tail(q.size() - start);
-  const Eigen::VectorXd T0 = q0.tail(q.size() - start);
-  const double lambda = T.dot(T0) / T0.squaredNorm();
-  EXPECT_LT((T - lambda * T0).norm(), 1e-13 * T.norm());
+  const Eigen::VectorXd trajectory_now = q.tail(q.size() - start);
+  const Eigen::VectorXd trajectory_start = q0.tail(q.size() - start);
+  const double lambda = trajectory_now.dot(trajectory_start) / trajectory_start.squaredNorm();
+  EXPECT_LT((trajectory_now - lambda * trajectory_start).norm(), 1e-13 * trajectory_now.norm());
   EXPECT_GT(std::abs(lambda - 1.0), 0.1);  // it did scale (the gauge is on the profile)
   // The shape changed a lot, into an egg: wider above the equator than below.
   double displacement = 0.0;

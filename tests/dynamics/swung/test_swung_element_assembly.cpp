@@ -32,27 +32,28 @@ void reference(const SwungSurface& surface, const SwungQuadrature& quadrature,
                const SwungLayout& layout, const std::vector<PlanarCurveSample>& profile,
                const std::vector<PlanarCurveSample>& trajectory, Eigen::MatrixXd& mass,
                Eigen::MatrixXd& damping, Eigen::MatrixXd& stiffness) {
-  SwungJacobian J;
+  SwungJacobian point;
   for (int i = 0; i < quadrature.profile_point_count(); ++i) {
     for (int j = 0; j < quadrature.trajectory_point_count(); ++j) {
       const PlanarCurveSample& p = profile[static_cast<size_t>(i)];
       const PlanarCurveSample& t = trajectory[static_cast<size_t>(j)];
-      swung_jacobian(p, t, surface.alpha(), layout, 2, J);
+      swung_jacobian(p, t, surface.alpha(), layout, 2, point);
       const double w = quadrature.weight(i, j);
       const double* m = quadrature.material(i, j);
-      Eigen::MatrixXd local_mass = J.columns[0].transpose() * J.columns[0];
-      Eigen::MatrixXd local_stiffness = Eigen::MatrixXd::Zero(J.column_count, J.column_count);
+      Eigen::MatrixXd local_mass = point.columns[0].transpose() * point.columns[0];
+      Eigen::MatrixXd local_stiffness =
+          Eigen::MatrixXd::Zero(point.column_count, point.column_count);
       for (int q = 1; q < 6; ++q) {
-        const auto& Jq = J.columns[static_cast<size_t>(q)];
-        local_stiffness += w * m[1 + q] * Jq.transpose() * Jq;
+        const auto& quantity_jacobian = point.columns[static_cast<size_t>(q)];
+        local_stiffness += w * m[1 + q] * quantity_jacobian.transpose() * quantity_jacobian;
         add_swung_hessian(p, t, surface.alpha(), layout, static_cast<SurfaceQuantity>(q),
-                          w * m[1 + q] * J.point_derivatives[static_cast<size_t>(q)],
+                          w * m[1 + q] * point.point_derivatives[static_cast<size_t>(q)],
                           local_stiffness);
       }
-      for (int a = 0; a < J.column_count; ++a) {
-        for (int b = 0; b < J.column_count; ++b) {
-          const int r = J.coordinate[static_cast<size_t>(a)];
-          const int c = J.coordinate[static_cast<size_t>(b)];
+      for (int a = 0; a < point.column_count; ++a) {
+        for (int b = 0; b < point.column_count; ++b) {
+          const int r = point.coordinate[static_cast<size_t>(a)];
+          const int c = point.coordinate[static_cast<size_t>(b)];
           mass(r, c) += w * m[0] * local_mass(a, b);
           damping(r, c) += w * m[1] * local_mass(a, b);
           stiffness(r, c) += local_stiffness(a, b);
