@@ -63,6 +63,61 @@ int points_per_span(const NurbsCurve& curve, const DNurbsSwungSettings& settings
   return std::min(points, kMaxGaussPoints);
 }
 
+// The symmetric pattern of M, D, K: each curve's span windows, and every profile coordinate
+// with every trajectory one.
+SparseMatrix coupling_pattern(const SwungSurface& surface, const SwungLayout& layout) {
+  const int per = layout.per_control_point;
+  const int n = layout.coordinate_count();
+  const int trajectory_start = layout.trajectory_offset(0);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (const auto& windows :
+       {span_coordinates(surface.profile().knots(), 0, per),
+        span_coordinates(surface.trajectory().knots(), trajectory_start, per)}) {
+    for (const std::vector<int>& window : windows) {
+      for (const int i : window) {
+        for (const int j : window) {
+          triplets.emplace_back(i, j, 0.0);
+        }
+      }
+    }
+  }
+  for (int i = 0; i < trajectory_start; ++i) {
+    for (int j = trajectory_start; j < n; ++j) {
+      triplets.emplace_back(i, j, 0.0);
+      triplets.emplace_back(j, i, 0.0);
+    }
+  }
+  SparseMatrix pattern(n, n);
+  pattern.setFromTriplets(triplets.begin(), triplets.end());
+  pattern.makeCompressed();
+  return pattern;
+}
+
+// The scaling gauge's coordinate: the profile x of largest magnitude, ties going to the point
+// nearest the middle of the profile (a sphere's equator point). Throws Error if every x is 0.
+int largest_profile_x(const SwungLayout& layout, const Eigen::VectorXd& q) {
+  double largest = 0.0;
+  const int middle = layout.profile_count - 1;  // twice the middle index
+  int best_distance = 0;
+  int gauge = -1;
+  for (int i = 0; i < layout.profile_count; ++i) {
+    const int index = layout.profile_offset(i);
+    const double x = std::abs(q[index]);
+    const int distance = std::abs(2 * i - middle);
+    if (x > largest || (x == largest && x > 0.0 && distance < best_distance)) {
+      largest = x;
+      best_distance = distance;
+      gauge = index;
+    }
+  }
+  if (gauge < 0) {
+    throw make_error(
+        "every profile control point is on the z axis (x = 0): the swung surface is degenerate "
+        "and its scaling gauge cannot be fixed");
+  }
+  return gauge;
+}
+
 }  // namespace
 
 DNurbsSwungSurface::DNurbsSwungSurface(const SwungSurface& surface,
@@ -102,53 +157,25 @@ DNurbsSwungSurface::DNurbsSwungSurface(const SwungSurface& surface,
     throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
   }
 
+  // Separable fast path: fixed weights make the Gauss-point samples independent of q --------
+  separable_ = settings.separable_assembly && !free && material.mass_density.is_constant() &&
+               material.damping_density.is_constant() && material.a10.is_constant() &&
+               material.a01.is_constant() && material.b20.is_constant() &&
+               material.b11.is_constant() && material.b02.is_constant();
+  if (separable_) {
+    std::vector<PlanarCurveSample> profile;
+    std::vector<PlanarCurveSample> trajectory;
+    quadrature_samples(initial_coordinates_, profile, trajectory);
+    separable_forms_ = SwungSeparableForms(quadrature_, layout_, surface.alpha(), profile,
+                                           trajectory, quadrature_.material(0, 0));
+  }
+
   // Pattern: each curve's span windows, and every profile coordinate with every trajectory one --
-  const int per = layout_.per_control_point;
-  const int n = coordinate_count();
-  const int trajectory_start = layout_.trajectory_offset(0);
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (const auto& windows :
-       {span_coordinates(surface.profile().knots(), 0, per),
-        span_coordinates(surface.trajectory().knots(), trajectory_start, per)}) {
-    for (const std::vector<int>& window : windows) {
-      for (const int i : window) {
-        for (const int j : window) {
-          triplets.emplace_back(i, j, 0.0);
-        }
-      }
-    }
-  }
-  for (int i = 0; i < trajectory_start; ++i) {
-    for (int j = trajectory_start; j < n; ++j) {
-      triplets.emplace_back(i, j, 0.0);
-      triplets.emplace_back(j, i, 0.0);
-    }
-  }
-  pattern_.resize(n, n);
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
+  pattern_ = coupling_pattern(surface, layout_);
 
   // Gauges: the scaling (fix the profile x of largest magnitude) and each curve's weight scale -
   if (settings.fix_gauge) {
-    // Ties go to the point nearest the middle of the profile (a sphere's equator point).
-    double largest = 0.0;
-    const int middle = layout_.profile_count - 1;  // twice the middle index
-    int best_distance = 0;
-    for (int i = 0; i < layout_.profile_count; ++i) {
-      const int index = layout_.profile_offset(i);
-      const double x = std::abs(initial_coordinates_[index]);
-      const int distance = std::abs(2 * i - middle);
-      if (x > largest || (x == largest && x > 0.0 && distance < best_distance)) {
-        largest = x;
-        best_distance = distance;
-        gauge_coordinate_ = index;
-      }
-    }
-    if (gauge_coordinate_ < 0) {
-      throw make_error(
-          "every profile control point is on the z axis (x = 0): the swung surface "
-          "is degenerate and its scaling gauge cannot be fixed");
-    }
+    gauge_coordinate_ = largest_profile_x(layout_, initial_coordinates_);
     fix_coordinate(gauge_coordinate_);
     if (free) {
       fix_coordinate(layout_.profile_offset(0) + 2);
@@ -229,17 +256,23 @@ Eigen::Vector3d DNurbsSwungSurface::jacobian_rate_times_velocity(ConstVectorRef 
 // Matrices
 
 void DNurbsSwungSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {
-  std::vector<PlanarCurveSample> profile;
-  std::vector<PlanarCurveSample> trajectory;
-  quadrature_samples(q, profile, trajectory);
+  check_size(q, "coordinate");
   const int n = coordinate_count();
   const bool with_damping = quadrature_.has_damping();
   Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(n, n);
   Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(with_damping ? n : 0, with_damping ? n : 0);
   Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(n, n);
-  SwungElementAssembly assembly(quadrature_, layout_, surface_.alpha(), surface_.profile().degree(),
-                                surface_.trajectory().degree(), geometric_stiffness_);
-  assembly.assemble(profile, trajectory, mass, damping, stiffness);
+  if (separable_) {
+    separable_forms_.matrices(q, geometric_stiffness_, mass, damping, stiffness);
+  } else {
+    std::vector<PlanarCurveSample> profile;
+    std::vector<PlanarCurveSample> trajectory;
+    quadrature_samples(q, profile, trajectory);
+    SwungElementAssembly assembly(quadrature_, layout_, surface_.alpha(),
+                                  surface_.profile().degree(), surface_.trajectory().degree(),
+                                  geometric_stiffness_);
+    assembly.assemble(profile, trajectory, mass, damping, stiffness);
+  }
   if (layout_.mode == WeightMode::kFree) {
     for (int k = 2; k < n; k += 3) {
       mass(k, k) += weight_inertia_;
@@ -260,6 +293,11 @@ void DNurbsSwungSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matr
 void DNurbsSwungSurface::add_internal_force(ConstVectorRef q, VectorRef force) const {
   const int order = quadrature_.stiffness_order();
   if (order == 0) {
+    return;
+  }
+  if (separable_) {
+    check_size(q, "coordinate");
+    separable_forms_.add_internal_force(q, force);
     return;
   }
   std::vector<PlanarCurveSample> profile;
@@ -289,6 +327,10 @@ double DNurbsSwungSurface::potential_energy(ConstVectorRef q) const {
   if (order == 0) {
     return 0.0;
   }
+  if (separable_) {
+    check_size(q, "coordinate");
+    return separable_forms_.energy(q);
+  }
   std::vector<PlanarCurveSample> profile;
   std::vector<PlanarCurveSample> trajectory;
   quadrature_samples(q, profile, trajectory);
@@ -315,6 +357,11 @@ double DNurbsSwungSurface::potential_energy(ConstVectorRef q) const {
 void DNurbsSwungSurface::add_inertial_force(ConstVectorRef q, ConstVectorRef qd,
                                             VectorRef force) const {
   check_size(qd, "velocity");
+  if (separable_) {
+    check_size(q, "coordinate");
+    separable_forms_.add_inertial_force(q, qd, force);
+    return;
+  }
   std::vector<PlanarCurveSample> profile;
   std::vector<PlanarCurveSample> trajectory;
   quadrature_samples(q, profile, trajectory);

@@ -19,6 +19,7 @@
 #include "dynamics/dnurbs_surface.h"
 #include "dynamics/model.h"
 #include "dynamics/swung/swung_quadrature.h"
+#include "dynamics/swung/swung_separable_forms.h"
 #include "nurbs/swung_jacobian.h"
 #include "nurbs/swung_surface.h"
 
@@ -68,6 +69,12 @@ struct DNurbsSwungSettings {
   /// accelerate them fast; a small positive value slows them. Constant, so g and energy
   /// conservation are unaffected.
   double weight_inertia = 0.0;
+  /// With fixed weights and constant material every integrand is a product of a function of u
+  /// and one of v, and M, D, K, E, f_int and g are closed-form quadratic forms of the curves'
+  /// 1-D Gram matrices (SwungSeparableForms): O((m + n)^2) work per state instead of the
+  /// Gauss-point work over the span products, the same sums up to round-off. False: always the
+  /// general quadrature.
+  bool separable_assembly = true;
 };
 
 /// A swung D-NURBS surface as a Model.
@@ -156,6 +163,8 @@ class DNurbsSwungSurface : public Model {
                      int order, std::array<Eigen::Vector3d, 6>& rates) const;
   /// Area of the parametric domain.
   double parametric_measure() const;
+  /// True if the closed-form separable path is used (DNurbsSwungSettings::separable_assembly).
+  bool uses_separable_assembly() const { return separable_; }
 
  private:
   void check_size(const ConstVectorRef& q, const char* what) const;
@@ -171,6 +180,8 @@ class DNurbsSwungSurface : public Model {
   double minimum_weight_ = 1e-3;
   bool geometric_stiffness_ = true;
   double weight_inertia_ = 0.0;
+  bool separable_ = false;               // fixed weights, constant material and the setting on
+  SwungSeparableForms separable_forms_;  // built once when separable_
   int gauge_coordinate_ = -1;
   Eigen::VectorXd profile_weights_;     // the weights when they are not coordinates
   Eigen::VectorXd trajectory_weights_;  // (and the initial ones when they are)

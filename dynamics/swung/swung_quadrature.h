@@ -44,6 +44,9 @@ class SwungQuadrature {
   /// i / profile_points_per_span() (likewise along v).
   int profile_points_per_span() const { return table_u_.points_per_span; }
   int trajectory_points_per_span() const { return table_v_.points_per_span; }
+  /// Gauss weight (times half the span length) of profile point i and of trajectory point j.
+  double profile_weight(int i) const { return table_u_.weight[static_cast<size_t>(i)]; }
+  double trajectory_weight(int j) const { return table_v_.weight[static_cast<size_t>(j)]; }
   /// Gauss weight (times the span lengths) of the point pair (i, j).
   double weight(int i, int j) const {
     return table_u_.weight[static_cast<size_t>(i)] * table_v_.weight[static_cast<size_t>(j)];
