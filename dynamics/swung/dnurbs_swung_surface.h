@@ -57,12 +57,17 @@ struct DNurbsSwungSettings {
   /// the scaling, e.g. the whole profile or trajectory is fixed (then the gauge coordinate would
   /// be a real constraint).
   bool fix_gauge = true;
-  /// The assembled stiffness is the tangent stiffness d^2E/dq^2 = integral sum_Q k_Q (J_Q^T J_Q
-  /// + sum_c S^Q_c d^2 S^Q_c / dq^2) (true, exact for Newton iterations; indefinite where the
-  /// surface is stretched), or only its Gauss-Newton part integral sum_Q k_Q J_Q^T J_Q (false,
-  /// positive semi-definite, for large linearly implicit steps). The internal force -dE/dq is
-  /// exact either way.
-  bool geometric_stiffness = true;
+  /// The assembled stiffness (the K_T of the step matrix M + c_v D + c_q K_T) is the Gauss-Newton
+  /// part integral sum_Q k_Q J_Q^T J_Q of d^2E/dq^2 (false, the default: positive
+  /// semi-definite, as the free-weight tensor-product model's), or the exact tangent
+  /// d^2E/dq^2 = integral sum_Q k_Q (J_Q^T J_Q + sum_c S^Q_c d^2 S^Q_c / dq^2) (true: quadratic
+  /// Newton convergence near equilibrium and small steps). The exact tangent is indefinite where
+  /// the surface is stretched (the D-NURBS energy pulls every S^Q towards 0): on a sphere with a
+  /// refined trajectory (36 control points) under the thin plate at dt = 0.01 it made the Newmark
+  /// step diverge (energy 4 -> 4e10 in one step, with or without Newton iterations), while the
+  /// Gauss-Newton stiffness stayed stable. The internal force -dE/dq is exact either way, so a
+  /// step solved to convergence has the same answer with both.
+  bool geometric_stiffness = false;
   /// Free weights only: a constant inertia added to the diagonal of M for every weight
   /// coordinate (default 0: exact D-NURBS), as DNurbsSettings::weight_inertia. Weights are light
   /// coordinates (their M entries are ~1e-5 of the positions' for the prototypes), so forces
@@ -91,6 +96,15 @@ struct DNurbsSwungSettings {
 ///   S^Q,
 /// Q = S_u, S_v, S_uu, S_uv, S_vv with k_Q = a10, a01, b20, 2 b11, b02. Since S^Q is not linear
 /// in q, E is not (1/2) q^T K q: the model gives E, f_int and the tangent stiffness itself.
+///
+/// Stepping: M, D and K depend on q, so the integrators re-assemble and re-factor them at every
+/// solve. With refined curves and bending stiffness the trajectory's tangential modes are stiff
+/// (omega dt ~ 100 on a sphere refined to 35 x 68 control points with b02 = 0.005 at dt = 0.01),
+/// and the linearly implicit Newmark step (no Newton iterations) diverged there, while implicit
+/// Euler and Newmark with one Newton iteration stayed stable: use newton_iterations >= 1 for
+/// refined shapes. A surface that collapses onto its axis (all p_x -> 0, e.g. under the D-NURBS
+/// tension alone) makes M singular along the trajectory coordinates, and the step fails with
+/// the integrator's non-finite-state error.
 ///
 /// A swung surface has no 3-D control points among its coordinates: control_point_offset()
 /// throws (forces and constraints on control points address the curve coordinates through
