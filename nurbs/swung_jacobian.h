@@ -168,7 +168,8 @@ void swung_hessian_terms(const PlanarCurveSample& profile, const PlanarCurveSamp
                          const Eigen::Vector3d& lambda, SwungHessianTerms& terms);
 /// Adds mu . d^2 c^(order) / dq_i dq_j of one curve with free weights (3 columns per active
 /// control point: two in-plane coordinates and the weight) starting at local column `offset`;
-/// exactly symmetric. Zero for fixed weights, where the curve is linear in its coordinates.
+/// exactly symmetric. For free weights only: with fixed weights the curve is linear in its
+/// coordinates and has no such term (and only 2 columns per control point).
 void add_planar_curve_hessian(const PlanarCurveSample& sample, int order, const Eigen::Vector2d& mu,
                               int offset, Eigen::MatrixXd& hessian);
 
