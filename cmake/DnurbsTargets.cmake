@@ -35,7 +35,7 @@ endfunction()
 # broken upper layer cannot hide a lower one.
 function(dnurbs_add_test_folder folder)
   cmake_parse_arguments(ARG "" "" "LABELS;DEPENDS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp")
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp")
   if(NOT sources)
     return()
   endif()

@@ -1,0 +1,98 @@
+#include "nurbs/swung_shapes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "nurbs/primitive_shapes.h"
+
+namespace dnurbs {
+namespace {
+
+void check_positive(double value, const char* name) {
+  if (!std::isfinite(value) || !(value > 0.0)) {
+    throw make_error(name, " must be finite and > 0, got ", value);
+  }
+}
+
+// A straight profile from (x0, 0, z0) to (x1, 0, z1) with `count` control points at the
+// Greville abscissae of a clamped uniform knot vector, so the profile is linear in u.
+NurbsCurve straight_profile(double x0, double z0, double x1, double z1, int count) {
+  if (count < 2) {
+    throw make_error("a straight profile needs at least 2 control points, got ", count);
+  }
+  const int degree = std::min(3, count - 1);
+  KnotVector knots = KnotVector::clamped_uniform(degree, count);
+  Eigen::MatrixX3d points = Eigen::MatrixX3d::Zero(count, 3);
+  for (int i = 0; i < count; ++i) {
+    double greville = 0.0;
+    for (int k = 1; k <= degree; ++k) {
+      greville += knots[i + k];
+    }
+    greville /= degree;
+    points(i, 0) = x0 + greville * (x1 - x0);
+    points(i, 2) = z0 + greville * (z1 - z0);
+  }
+  return NurbsCurve(std::move(knots), std::move(points));
+}
+
+}  // namespace
+
+NurbsCurve unit_circle_trajectory() {
+  return periodic_circle(1.0);
+}
+
+SwungSurface swung_sphere(double radius) {
+  check_positive(radius, "swung sphere radius");
+  return SwungSurface(half_circle_xz(radius), unit_circle_trajectory());
+}
+
+SwungSurface swung_torus(double major_radius, double minor_radius) {
+  check_positive(major_radius, "swung torus major radius");
+  check_positive(minor_radius, "swung torus minor radius");
+  if (!(minor_radius < major_radius)) {
+    throw make_error("swung torus minor radius ", minor_radius, " must be below the major radius ",
+                     major_radius);
+  }
+  // The tube's periodic circle, turned from the xy into the xz plane and moved to x = R.
+  const NurbsCurve tube = periodic_circle(minor_radius);
+  Eigen::MatrixX3d points = Eigen::MatrixX3d::Zero(tube.control_point_count(), 3);
+  points.col(0) = tube.control_points().col(0).array() + major_radius;
+  points.col(2) = tube.control_points().col(1);
+  return SwungSurface(NurbsCurve(tube.knots(), std::move(points), tube.weights()),
+                      unit_circle_trajectory());
+}
+
+SwungSurface swung_cylinder(double radius, double height, int profile_control_points) {
+  check_positive(radius, "swung cylinder radius");
+  check_positive(height, "swung cylinder height");
+  return SwungSurface(straight_profile(radius, 0.0, radius, height, profile_control_points),
+                      unit_circle_trajectory());
+}
+
+SwungSurface swung_cone(double radius, double height, int profile_control_points) {
+  check_positive(radius, "swung cone radius");
+  check_positive(height, "swung cone height");
+  return SwungSurface(straight_profile(radius, 0.0, 0.0, height, profile_control_points),
+                      unit_circle_trajectory());
+}
+
+SwungSurface swung_hat(double brim_radius, double crown_radius, double height) {
+  check_positive(brim_radius, "swung hat brim radius");
+  check_positive(crown_radius, "swung hat crown radius");
+  check_positive(height, "swung hat height");
+  if (!(crown_radius < brim_radius)) {
+    throw make_error("swung hat crown radius ", crown_radius, " must be below the brim radius ",
+                     brim_radius);
+  }
+  const double c = crown_radius;
+  const double brim = brim_radius - crown_radius;
+  Eigen::MatrixX3d points(8, 3);
+  // Apex on the axis, flat top, the crown's side, then the brim out to (brim_radius, 0, 0).
+  points << 0.0, 0.0, height, 0.6 * c, 0.0, height, c, 0.0, height, c, 0.0, 0.45 * height, c, 0.0,
+      0.05 * height, c + 0.3 * brim, 0.0, 0.0, c + 0.65 * brim, 0.0, 0.0, brim_radius, 0.0, 0.0;
+  return SwungSurface(NurbsCurve(KnotVector::clamped_uniform(3, 8), std::move(points)),
+                      unit_circle_trajectory());
+}
+
+}  // namespace dnurbs
