@@ -91,7 +91,7 @@ Eigen::Vector3d TargetTrajectory::position(double time) const {
     case Kind::kFixed:
       return point_;
     case Kind::kFunction: {
-      const Eigen::Vector3d x = position_(time);
+      Eigen::Vector3d x = position_(time);
       if (!x.allFinite()) {
         throw make_error("constraint target function is not finite at t = ", time);
       }

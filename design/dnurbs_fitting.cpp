@@ -192,7 +192,7 @@ Eigen::VectorXd solve_nonlinear_least_squares(const DNurbsModel& model, const Ei
   } catch (const std::runtime_error&) {
     // NLopt's generic failure (line search): x holds the best point found.
   }
-  const Eigen::VectorXd q = fit.coordinates(x.data());
+  Eigen::VectorXd q = fit.coordinates(x.data());
   if (!q.allFinite()) {
     throw make_error("the free-weight fit produced non-finite coordinates");
   }

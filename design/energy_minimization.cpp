@@ -146,9 +146,9 @@ double design_energy(const System& system, const Eigen::VectorXd& applied_force,
   return energy;
 }
 
-DesignResult minimize_energy(const System& system, const ConstraintSolver* constraints,
-                             const DesignSettings& settings) {
-  const int n = system.velocity_count();
+namespace {
+
+void check_settings(const System& system, const DesignSettings& settings) {
   if (settings.max_evaluations <= 0) {
     throw make_error("design max_evaluations must be > 0 (it is ", settings.max_evaluations, ")");
   }
@@ -160,25 +160,20 @@ DesignResult minimize_energy(const System& system, const ConstraintSolver* const
                      settings.max_seconds, ")");
   }
   if (!system.coordinates().allFinite()) {
-    throw make_error("energy minimisation cannot start from non-finite coordinates");
+    throw make_error("energy minimization cannot start from non-finite coordinates");
   }
+}
 
-  Problem problem;
-  problem.system = &system;
-  problem.constraints =
-      (constraints != nullptr && constraints->row_count() > 0) ? constraints : nullptr;
-  problem.start = system.coordinates();
-  problem.applied_force = Eigen::VectorXd::Zero(n);
-  system.add_applied_forces(system.time(), problem.start, Eigen::VectorXd::Zero(n),
-                            problem.applied_force);
-
-  // Free variables and their bounds (free D-NURBS weights >= minimum weight).
+// The free variables (velocities that are coordinates and not fixed), their starting values
+// inside the bounds (x) and their lower bounds (Model::coordinate_lower_bounds).
+void choose_variables(const System& system, Problem& problem, std::vector<double>& x,
+                      std::vector<double>& lower_free) {
+  const int n = system.velocity_count();
   Eigen::VectorXd bounds = Eigen::VectorXd::Constant(n, -HUGE_VAL);
   for (int i = 0; i < system.model_count(); ++i) {
     system.model(i).coordinate_lower_bounds(
         bounds.segment(system.velocity_offset(i), system.model(i).velocity_count()));
   }
-  const std::vector<double> lower(bounds.data(), bounds.data() + n);
   problem.coordinate = velocity_to_coordinate(system);
   problem.variable.assign(static_cast<size_t>(n), 0);
   for (const int index : system.fixed_coordinates()) {
@@ -189,8 +184,6 @@ DesignResult minimize_energy(const System& system, const ConstraintSolver* const
       problem.variable[static_cast<size_t>(j)] = -1;
     }
   }
-  std::vector<double> x;
-  std::vector<double> lower_free;
   for (int j = 0; j < n; ++j) {
     if (problem.variable[static_cast<size_t>(j)] < 0) {
       continue;
@@ -198,61 +191,82 @@ DesignResult minimize_energy(const System& system, const ConstraintSolver* const
     problem.variable[static_cast<size_t>(j)] = static_cast<int>(problem.free.size());
     problem.free.push_back(j);
     // Start inside the bounds.
-    x.push_back(std::max(problem.start[problem.coordinate[static_cast<size_t>(j)]],
-                         lower[static_cast<size_t>(j)]));
-    lower_free.push_back(lower[static_cast<size_t>(j)]);
+    x.push_back(std::max(problem.start[problem.coordinate[static_cast<size_t>(j)]], bounds[j]));
+    lower_free.push_back(bounds[j]);
   }
-  const auto variable_count = static_cast<unsigned>(problem.free.size());
+}
+
+// Runs NLopt from x (updated to the best point found); returns its status. NLopt's C++ API
+// throws for failures but leaves the best point found in x.
+nlopt::result optimize(Problem& problem, const DesignSettings& settings,
+                       const std::vector<double>& lower_free, std::vector<double>& x) {
+  const auto variable_count = static_cast<unsigned>(x.size());
+  const bool auglag = settings.algorithm == DesignAlgorithm::kAugmentedLagrangianLbfgs;
+  nlopt::opt optimizer(auglag ? nlopt::AUGLAG_EQ : nlopt::LD_SLSQP, variable_count);
+  if (auglag) {
+    nlopt::opt local(nlopt::LD_LBFGS, variable_count);
+    local.set_xtol_rel(settings.variable_tolerance);
+    local.set_ftol_rel(settings.energy_tolerance);
+    local.set_maxeval(settings.max_evaluations);
+    optimizer.set_local_optimizer(local);
+  }
+  optimizer.set_lower_bounds(lower_free);
+  optimizer.set_min_objective(objective, &problem);
+  optimizer.set_xtol_rel(settings.variable_tolerance);
+  optimizer.set_ftol_rel(settings.energy_tolerance);
+  optimizer.set_maxeval(settings.max_evaluations);
+  if (settings.max_seconds > 0.0) {
+    optimizer.set_maxtime(settings.max_seconds);
+  }
+  if (problem.constraints != nullptr) {
+    const std::vector<double> tolerances(static_cast<size_t>(problem.constraints->row_count()),
+                                         settings.constraint_tolerance);
+    optimizer.add_equality_mconstraint(equalities, &problem, tolerances);
+  }
+  double value = 0.0;
+  try {
+    return optimizer.optimize(x, value);
+  } catch (const nlopt::roundoff_limited&) {
+    return nlopt::ROUNDOFF_LIMITED;
+  } catch (const nlopt::forced_stop&) {
+    return nlopt::FORCED_STOP;
+  } catch (const std::invalid_argument& error) {
+    throw make_error("NLopt rejected the design problem (", variable_count,
+                     " variables): ", error.what());
+  } catch (const std::bad_alloc&) {
+    throw make_error("NLopt ran out of memory on a design problem of ", variable_count,
+                     " variables");
+  } catch (const std::runtime_error&) {
+    return nlopt::FAILURE;
+  }
+}
+
+}  // namespace
+
+DesignResult minimize_energy(const System& system, const ConstraintSolver* constraints,
+                             const DesignSettings& settings) {
+  check_settings(system, settings);
+  const int n = system.velocity_count();
+  Problem problem;
+  problem.system = &system;
+  problem.constraints =
+      (constraints != nullptr && constraints->row_count() > 0) ? constraints : nullptr;
+  problem.start = system.coordinates();
+  problem.applied_force = Eigen::VectorXd::Zero(n);
+  system.add_applied_forces(system.time(), problem.start, Eigen::VectorXd::Zero(n),
+                            problem.applied_force);
+  std::vector<double> x;
+  std::vector<double> lower_free;
+  choose_variables(system, problem, x, lower_free);
 
   DesignResult result;
-  if (variable_count == 0) {
+  if (x.empty()) {
     result.coordinates = problem.start;
     result.energy = design_energy(system, problem.applied_force, problem.start, nullptr);
     result.status = static_cast<int>(nlopt::SUCCESS);
     result.status_name = "SUCCESS";
   } else {
-    // Optimiser set-up.
-    const bool auglag = settings.algorithm == DesignAlgorithm::kAugmentedLagrangianLbfgs;
-    nlopt::opt optimizer(auglag ? nlopt::AUGLAG_EQ : nlopt::LD_SLSQP, variable_count);
-    if (auglag) {
-      nlopt::opt local(nlopt::LD_LBFGS, variable_count);
-      local.set_xtol_rel(settings.variable_tolerance);
-      local.set_ftol_rel(settings.energy_tolerance);
-      local.set_maxeval(settings.max_evaluations);
-      optimizer.set_local_optimizer(local);
-    }
-    optimizer.set_lower_bounds(lower_free);
-    optimizer.set_min_objective(objective, &problem);
-    optimizer.set_xtol_rel(settings.variable_tolerance);
-    optimizer.set_ftol_rel(settings.energy_tolerance);
-    optimizer.set_maxeval(settings.max_evaluations);
-    if (settings.max_seconds > 0.0) {
-      optimizer.set_maxtime(settings.max_seconds);
-    }
-    if (problem.constraints != nullptr) {
-      const std::vector<double> tolerances(static_cast<size_t>(problem.constraints->row_count()),
-                                           settings.constraint_tolerance);
-      optimizer.add_equality_mconstraint(equalities, &problem, tolerances);
-    }
-
-    // Run: NLopt's C++ API throws for failures but leaves the best point found in x.
-    double value = 0.0;
-    nlopt::result status = nlopt::FAILURE;
-    try {
-      status = optimizer.optimize(x, value);
-    } catch (const nlopt::roundoff_limited&) {
-      status = nlopt::ROUNDOFF_LIMITED;
-    } catch (const nlopt::forced_stop&) {
-      status = nlopt::FORCED_STOP;
-    } catch (const std::invalid_argument& error) {
-      throw make_error("NLopt rejected the design problem (", variable_count,
-                       " variables): ", error.what());
-    } catch (const std::bad_alloc&) {
-      throw make_error("NLopt ran out of memory on a design problem of ", variable_count,
-                       " variables");
-    } catch (const std::runtime_error&) {
-      status = nlopt::FAILURE;
-    }
+    const nlopt::result status = optimize(problem, settings, lower_free, x);
     problem.set_point(x.data());
     result.coordinates = problem.q;
     result.energy = design_energy(system, problem.applied_force, problem.q, nullptr);
@@ -261,7 +275,7 @@ DesignResult minimize_energy(const System& system, const ConstraintSolver* const
   }
   result.iterations = problem.evaluations;
   if (!result.coordinates.allFinite()) {
-    throw make_error("energy minimisation produced non-finite coordinates (NLopt status ",
+    throw make_error("energy minimization produced non-finite coordinates (NLopt status ",
                      result.status_name, ")");
   }
   if (problem.constraints != nullptr) {

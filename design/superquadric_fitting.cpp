@@ -339,7 +339,7 @@ SuperquadricFitResult fit_superquadric(const Eigen::MatrixX3d& points,
   const Eigen::Matrix3d covariance =
       centred.transpose() * centred / static_cast<double>(points.rows());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  const Eigen::Matrix3d axes = eigen.eigenvectors();
+  const Eigen::Matrix3d& axes = eigen.eigenvectors();
   const double scale = std::sqrt(std::max(eigen.eigenvalues().maxCoeff(), 0.0)) * 2.0;
   if (!(eigen.eigenvalues().minCoeff() > 1e-12 * eigen.eigenvalues().maxCoeff()) ||
       !(scale > 0.0)) {

@@ -52,7 +52,7 @@ CommandResult run_command(const std::string& command) {
 std::filesystem::path find_preview_script(const std::vector<std::filesystem::path>& directories) {
   std::string searched;
   for (const auto& directory : directories) {
-    const std::filesystem::path script = directory / kPreviewScriptName;
+    std::filesystem::path script = directory / kPreviewScriptName;
     std::error_code error;
     if (std::filesystem::is_regular_file(script, error)) {
       return script;

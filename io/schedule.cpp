@@ -26,7 +26,7 @@ double ScalarSchedule::at(double time) const {
 VectorOfTime vector_of_time(const VectorSchedule& schedule) {
   if (schedule.times.empty()) {
     const Eigen::Vector3d value = schedule.values.front();
-    return [value](double) { return value; };
+    return [value](double) { return Eigen::Vector3d(value); };
   }
   auto keyframes = std::make_shared<TargetTrajectory>(
       TargetTrajectory::keyframes(schedule.times, schedule.values));

@@ -9,7 +9,8 @@
 
 namespace dnurbs {
 
-NurbsCurve::NurbsCurve(KnotVector knots, Eigen::MatrixX3d control_points, Eigen::VectorXd weights)
+NurbsCurve::NurbsCurve(KnotVector knots, const Eigen::MatrixX3d& control_points,
+                       const Eigen::VectorXd& weights)
     : knots_(std::move(knots)) {
   const int count = knots_.control_point_count();
   if (control_points.rows() != count) {

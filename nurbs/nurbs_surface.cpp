@@ -33,8 +33,8 @@ void SurfaceDerivatives::reset(int order) {
   }
 }
 
-NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v, Eigen::MatrixX3d control_points,
-                           Eigen::VectorXd weights)
+NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v,
+                           const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights)
     : knots_u_(std::move(knots_u)), knots_v_(std::move(knots_v)) {
   const int count = knots_u_.control_point_count() * knots_v_.control_point_count();
   if (control_points.rows() != count) {

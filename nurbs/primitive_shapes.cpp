@@ -13,14 +13,14 @@ void check_radius(double radius, const char* name) {
   }
 }
 
-const double kHalfSqrt2 = std::sqrt(0.5);
+const double half_sqrt2 = std::sqrt(0.5);
 
 // (x, y, weight) of the 8 distinct control points of the periodic unit circle, from angle 0.
 constexpr int kPeriodicCirclePoints = 8;
 Eigen::Matrix<double, kPeriodicCirclePoints, 3> periodic_unit_circle() {
   Eigen::Matrix<double, kPeriodicCirclePoints, 3> circle;
-  circle << 1, 0, 1, 1, 1, kHalfSqrt2, 0, 1, 1, -1, 1, kHalfSqrt2, -1, 0, 1, -1, -1, kHalfSqrt2, 0,
-      -1, 1, 1, -1, kHalfSqrt2;
+  circle << 1, 0, 1, 1, 1, half_sqrt2, 0, 1, 1, -1, 1, half_sqrt2, -1, 0, 1, -1, -1, half_sqrt2, 0,
+      -1, 1, 1, -1, half_sqrt2;
   return circle;
 }
 
@@ -37,7 +37,7 @@ NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre) {
   points *= radius;
   points.rowwise() += centre.transpose();
   Eigen::VectorXd weights(9);
-  weights << 1, kHalfSqrt2, 1, kHalfSqrt2, 1, kHalfSqrt2, 1, kHalfSqrt2, 1;
+  weights << 1, half_sqrt2, 1, half_sqrt2, 1, half_sqrt2, 1, half_sqrt2, 1;
   KnotVector knots(2, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1});
   return NurbsCurve(std::move(knots), std::move(points), std::move(weights));
 }
@@ -59,7 +59,7 @@ NurbsCurve half_circle_xz(double radius) {
   points << 0, 0, -1, 1, 0, -1, 1, 0, 0, 1, 0, 1, 0, 0, 1;
   points *= radius;
   Eigen::VectorXd weights(5);
-  weights << 1, kHalfSqrt2, 1, kHalfSqrt2, 1;
+  weights << 1, half_sqrt2, 1, half_sqrt2, 1;
   KnotVector knots(2, {0, 0, 0, 0.5, 0.5, 1, 1, 1});
   return NurbsCurve(std::move(knots), std::move(points), std::move(weights));
 }
@@ -115,7 +115,7 @@ NurbsSurface periodic_torus(double major_radius, double minor_radius,
   check_radius(major_radius, "torus major radius");
   check_radius(minor_radius, "torus minor radius");
   const auto circle = periodic_unit_circle();
-  constexpr int n = kPeriodicCirclePoints;
+  const int n = kPeriodicCirclePoints;
   Eigen::MatrixX3d points(n * n, 3);
   Eigen::VectorXd weights(n * n);
   for (int i = 0; i < n; ++i) {    // u: around the z axis

@@ -201,6 +201,7 @@ SpanCachedSurfaceEvaluator::SpanCachedSurfaceEvaluator(const NurbsSurface& surfa
   coefficients_.assign(spans_u.size() * spans_v.size() * static_cast<std::size_t>(patch_size_),
                        0.0);
   std::vector<TaylorTable> taylor_v;
+  taylor_v.reserve(spans_v.size());
   for (const int span : spans_v) {
     taylor_v.push_back(basis_taylor_coefficients(knots_v_, span));
   }

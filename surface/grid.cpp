@@ -50,6 +50,7 @@ std::vector<Eigen::Vector2d> Grid::row_parameters(int j) const {
     throw make_error("grid row ", j, " is outside 0..", nv_ - 1);
   }
   std::vector<Eigen::Vector2d> parameters;
+  parameters.reserve(static_cast<size_t>(nu_));
   for (int i = 0; i < nu_; ++i) {
     parameters.push_back(parameter(i, j));
   }

@@ -126,6 +126,7 @@ int eval_command(const std::vector<std::string>& arguments, std::ostream& out) {
     throw UsageError("missing --at (at least one parameter to evaluate at)");
   }
   std::vector<std::vector<double>> parameters;
+  parameters.reserve(at_flags.size());
   for (const auto& flag : at_flags) {
     parameters.push_back(parse_doubles(flag, "--at " + flag));
   }

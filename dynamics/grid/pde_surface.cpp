@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 #include "surface/grid_difference_operators.h"
 
 namespace dnurbs {
@@ -48,11 +49,15 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
       throw make_error("PDE surface boundary tangent ", name, " = ", value, " is not finite");
     }
   }
-  const int nu = grid.nu();
-  const int nv = grid.nv();
-  const int n = grid.node_count();
+  choose_active_nodes(regions);
+  build_matrices();
+}
 
-  // Deformation regions -> index boxes; active = strictly inside a box.
+void PdeSurface::choose_active_nodes(const std::vector<DeformationRegion>& regions) {
+  // Deformation regions (seed 002 section 5) -> index boxes; active = strictly inside a box.
+  const int nu = grid_.nu();
+  const int nv = grid_.nv();
+  const int n = grid_.node_count();
   std::vector<std::array<int, 4>> boxes;  // i_min, i_max, j_min, j_max
   if (regions.empty()) {
     boxes.push_back({0, nu - 1, 0, nv - 1});
@@ -65,8 +70,8 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
     }
     std::array<int, 4> box{nu, -1, nv, -1};
     for (int k = 0; k < n; ++k) {
-      if ((rest.row(k).transpose() - region.centre).norm() < region.deformation_radius) {
-        const auto [i, j] = grid.node(k);
+      if ((rest_.row(k).transpose() - region.centre).norm() < region.deformation_radius) {
+        const auto [i, j] = grid_.node(k);
         box = {std::min(box[0], i), std::max(box[1], i), std::min(box[2], j), std::max(box[3], j)};
       }
     }
@@ -79,7 +84,7 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
   }
   slot_.assign(static_cast<size_t>(n), -1);
   for (int k = 0; k < n; ++k) {
-    const auto [i, j] = grid.node(k);
+    const auto [i, j] = grid_.node(k);
     for (const auto& box : boxes) {
       if (i > box[0] && i < box[1] && j > box[2] && j < box[3]) {
         slot_[static_cast<size_t>(k)] = static_cast<int>(active_.size());
@@ -88,11 +93,17 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
       }
     }
   }
+}
 
+void PdeSurface::build_matrices() {
+  const int nu = grid_.nu();
+  const int nv = grid_.nv();
+  const int n = grid_.node_count();
+  const PdeSurfaceMaterial& material = material_;
   // Rest normals for the boundary tangents.
-  const GridDifferenceOperators operators = grid_difference_operators(grid);
-  const NodePositions t1 = operators.t1 * rest;
-  const NodePositions t2 = operators.t2 * rest;
+  const GridDifferenceOperators operators = grid_difference_operators(grid_);
+  const NodePositions t1 = operators.t1 * rest_;
+  const NodePositions t2 = operators.t2 * rest_;
   NodePositions normal(n, 3);
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector3d cross = t1.row(k).transpose().cross(t2.row(k).transpose());
@@ -102,17 +113,18 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
   }
 
   // seed 002 eq 8 by central differences, times the node area h^2.
-  const double h = grid.spacing();
+  const double h = grid_.spacing();
   const double area = h * h;
   const double h4 = h * h * h * h;
   const int active_count = static_cast<int>(active_.size());
   tangent_force_ = Eigen::VectorXd::Zero(3 * active_count);
   std::vector<Eigen::Triplet<double>> scalar;
   const auto slot_at = [&](int i, int j) {
-    return i < 0 || j < 0 || i >= nu || j >= nv ? -1 : slot_[static_cast<size_t>(grid.index(i, j))];
+    return i < 0 || j < 0 || i >= nu || j >= nv ? -1
+                                                : slot_[static_cast<size_t>(grid_.index(i, j))];
   };
   for (int a = 0; a < active_count; ++a) {
-    const auto [i, j] = grid.node(active_[static_cast<size_t>(a)]);
+    const auto [i, j] = grid_.node(active_[static_cast<size_t>(a)]);
     // Fourth differences along u (b) and v (d): r(-2) - 4 r(-1) + 6 r(0) - 4 r(1) + r(2).
     const std::array<std::array<int, 2>, 2> axes{{{1, 0}, {0, 1}}};
     for (int axis = 0; axis < 2; ++axis) {
@@ -136,7 +148,7 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
           diagonal += 1.0;
           const double s = axis == 0 ? (side < 0 ? material.tangent_u0 : material.tangent_u1)
                                      : (side < 0 ? material.tangent_v0 : material.tangent_v1);
-          const int boundary = grid.index(i + side * di, j + side * dj);
+          const int boundary = grid_.index(i + side * di, j + side * dj);
           tangent_force_.segment<3>(3 * a) +=
               coefficient * 2.0 * h * s * normal.row(boundary).transpose();
         }
@@ -158,25 +170,19 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
       }
     }
   }
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(3 * scalar.size());
-  for (const auto& entry : scalar) {
-    for (int c = 0; c < 3; ++c) {
-      triplets.emplace_back(3 * entry.row() + c, 3 * entry.col() + c, entry.value());
-    }
-  }
+  SparseMatrix scalar_stiffness(active_count, active_count);
+  scalar_stiffness.setFromTriplets(scalar.begin(), scalar.end());
+  matrices_.stiffness = kronecker_identity(scalar_stiffness, 3);
   const int size = 3 * active_count;
-  matrices_.stiffness.resize(size, size);
-  matrices_.stiffness.setFromTriplets(triplets.begin(), triplets.end());
-  matrices_.stiffness.makeCompressed();
   SparseMatrix identity(size, size);
   identity.setIdentity();
   matrices_.mass = (material.mass_density * area) * identity;
-  matrices_.damping = material.damping_density > 0.0 ? SparseMatrix((material.damping_density * area) * identity)
-                                             : SparseMatrix(size, size);
+  matrices_.damping = material.damping_density > 0.0
+                          ? SparseMatrix((material.damping_density * area) * identity)
+                          : SparseMatrix(size, size);
   rest_coordinates_.resize(size);
   for (int a = 0; a < active_count; ++a) {
-    rest_coordinates_.segment<3>(3 * a) = rest.row(active_[static_cast<size_t>(a)]).transpose();
+    rest_coordinates_.segment<3>(3 * a) = rest_.row(active_[static_cast<size_t>(a)]).transpose();
   }
 }
 

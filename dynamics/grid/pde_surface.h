@@ -107,6 +107,11 @@ class PdeSurface : public Model {
                           std::string name) const override;
 
  private:
+  // Construction steps: the active nodes of the deformation regions, then M, D, K and the
+  // constant force of the boundary tangents.
+  void choose_active_nodes(const std::vector<DeformationRegion>& regions);
+  void build_matrices();
+
   Grid grid_;
   PdeSurfaceMaterial material_;
   NodePositions rest_;

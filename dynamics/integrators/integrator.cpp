@@ -219,11 +219,108 @@ std::string_view to_string(IntegratorScheme scheme) {
 }
 
 // The blocks of A and the work vectors of a step, kept between steps.
+namespace {
+
+// The coefficients of one step of a scheme (integrator.h's header comment).
+struct StepCoefficients {
+  double position = 0.0;  // q_new = q_pred "+" position a
+  double velocity = 0.0;  // v_eq = v_pred + velocity a
+  double store = 0.0;     // v_new = v_store + store a
+  double force_time = 0.0;
+  double predictor_acceleration_q = 0.0;  // Newmark: q_pred gets (1/2 - beta) dt^2 a_old
+  double predictor_acceleration_v = 0.0;  // and v_pred (1 - gamma) dt a_old
+};
+
+StepCoefficients step_coefficients(const IntegratorSettings& settings, double t, double dt) {
+  StepCoefficients c;
+  c.position = dt * dt;
+  c.velocity = dt;
+  c.store = dt;
+  c.force_time = t + dt;
+  if (settings.scheme == IntegratorScheme::kNewmark) {
+    const double beta = settings.newmark_beta;
+    const double gamma = settings.newmark_gamma;
+    c.position = beta * dt * dt;
+    c.velocity = gamma * dt;
+    c.store = gamma * dt;
+    c.predictor_acceleration_q = (0.5 - beta) * dt * dt;
+    c.predictor_acceleration_v = (1.0 - gamma) * dt;
+  } else if (settings.scheme == IntegratorScheme::kCentral) {
+    c.velocity = 0.5 * dt;  // (q(t+dt) - q(t-dt)) / (2 dt) = v + dt a / 2
+    c.force_time = t;
+  }
+  return c;
+}
+
+}  // namespace
+
 struct Integrator::Workspace {
   MatrixBlocks blocks;
+  StepCoefficients coefficients;
   Eigen::VectorXd q_pred, v_pred, v_store, a, delta, rhs, q_iter, v_iter, external, increment;
   Eigen::VectorXd q_new, v_new;
 };
+
+namespace {
+
+// The predictor (q_pred, v_pred, v_store) from the state at t, fixed coordinates held.
+void predict(const System& system, bool newmark, double dt, Integrator::Workspace& w) {
+  const std::vector<int>& fixed = system.fixed_coordinates();
+  const StepCoefficients& c = w.coefficients;
+  w.v_pred = system.velocities();
+  for (const int index : fixed) {
+    w.v_pred[index] = 0.0;
+  }
+  w.increment = dt * w.v_pred;
+  if (newmark) {
+    const Eigen::VectorXd& a_old = system.accelerations();
+    w.increment += c.predictor_acceleration_q * a_old;
+    w.v_pred += c.predictor_acceleration_v * a_old;
+    for (const int index : fixed) {
+      w.increment[index] = 0.0;
+      w.v_pred[index] = 0.0;
+    }
+  }
+  // Central stores v + dt a but damps with v + dt a / 2; the others store what they damp with.
+  w.v_store = w.v_pred;
+  w.q_pred.resize(system.coordinate_count());
+  system.advance_coordinates(system.coordinates(), w.increment, w.q_pred);
+}
+
+// b -= K q + D v (+ M a after the first solve) block by block, at the iterate: the residual of
+// A a = b (integrator.h) with the internal forces of the models.
+void subtract_block_terms(const System& system, bool with_acceleration, Integrator::Workspace& w) {
+  for (const auto& block : w.blocks.blocks) {
+    const Eigen::Index vo = block->velocity_offset;
+    const Eigen::Index vc = block->velocity_count;
+    if (block->kronecker) {
+      const ModelMatrices& scalar = *system.model(block->model).scalar_matrices();
+      const Eigen::Index nodes = vc / 3;
+      NodeMap R(w.rhs.data() + vo, nodes, 3);
+      R.noalias() -=
+          scalar.stiffness * ConstNodeMap(w.q_iter.data() + block->coordinate_offset, nodes, 3);
+      if (scalar.damping.nonZeros() > 0) {
+        R.noalias() -= scalar.damping * ConstNodeMap(w.v_iter.data() + vo, nodes, 3);
+      }
+      if (with_acceleration) {
+        R.noalias() -= scalar.mass * ConstNodeMap(w.a.data() + vo, nodes, 3);
+      }
+    } else {
+      system.model(block->model)
+          .add_internal_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
+                              w.rhs.segment(vo, vc));
+      const ModelMatrices& matrices = block->full_matrices(system);
+      if (matrices.damping.nonZeros() > 0) {
+        w.rhs.segment(vo, vc).noalias() -= matrices.damping * w.v_iter.segment(vo, vc);
+      }
+      if (with_acceleration) {
+        w.rhs.segment(vo, vc).noalias() -= matrices.mass * w.a.segment(vo, vc);
+      }
+    }
+  }
+}
+
+}  // namespace
 
 Integrator::Integrator(IntegratorSettings settings)
     : settings_(settings), work_(std::make_unique<Workspace>()) {
@@ -328,85 +425,27 @@ void Integrator::step(System& system, double dt) {
   const std::vector<int>& fixed = system.fixed_coordinates();
   const IntegratorScheme scheme = settings_.scheme;
   const double t = system.time();
+  w.coefficients = step_coefficients(settings_, t, dt);
+  if (scheme == IntegratorScheme::kNewmark && !system.accelerations_valid()) {
+    initial_acceleration(system);
+  }
+  predict(system, scheme == IntegratorScheme::kNewmark, dt, w);
+  const bool any_state_dependent = factor_constant_blocks(system);
 
-  // Step coefficients of the scheme ------------------------------------------------------------
-  double position_coefficient = dt * dt;
-  double velocity_coefficient = dt;
-  double store_coefficient = dt;
-  double force_time = t + dt;
-  double predictor_acceleration_q = 0.0;
-  double predictor_acceleration_v = 0.0;
-  if (scheme == IntegratorScheme::kNewmark) {
-    const double beta = settings_.newmark_beta;
-    const double gamma = settings_.newmark_gamma;
-    position_coefficient = beta * dt * dt;
-    velocity_coefficient = gamma * dt;
-    store_coefficient = gamma * dt;
-    predictor_acceleration_q = (0.5 - beta) * dt * dt;
-    predictor_acceleration_v = (1.0 - gamma) * dt;
-    if (!system.accelerations_valid()) {
-      initial_acceleration(system);
-    }
-  } else if (scheme == IntegratorScheme::kCentral) {
-    velocity_coefficient = 0.5 * dt;  // (q(t+dt) - q(t-dt)) / (2 dt) = v + dt a / 2
-    force_time = t;
-  }
-
-  // Predictor ---------------------------------------------------------------------------------
-  const Eigen::VectorXd& q = system.coordinates();
-  w.v_pred = system.velocities();
-  for (const int index : fixed) {
-    w.v_pred[index] = 0.0;
-  }
-  w.increment = dt * w.v_pred;
-  if (scheme == IntegratorScheme::kNewmark) {
-    const Eigen::VectorXd& a_old = system.accelerations();
-    w.increment += predictor_acceleration_q * a_old;
-    w.v_pred += predictor_acceleration_v * a_old;
-    for (const int index : fixed) {
-      w.increment[index] = 0.0;
-      w.v_pred[index] = 0.0;
-    }
-  }
-  // Central stores v + dt a but damps with v + dt a / 2; the others store what they damp with.
-  w.v_store = w.v_pred;
-  w.q_pred.resize(system.coordinate_count());
-  system.advance_coordinates(q, w.increment, w.q_pred);
-
-  // Constant blocks of A: factored once per dt and scheme -------------------------------------
-  w.blocks.layout(system);
-  const std::vector<std::unique_ptr<MatrixBlock>>& blocks = w.blocks.blocks;
-  bool refactored = false;
-  bool any_state_dependent = false;
-  for (const auto& block : blocks) {
-    if (!block->constant) {
-      any_state_dependent = true;
-    } else if (!block->factored || block->position_coefficient != position_coefficient ||
-               block->velocity_coefficient != velocity_coefficient) {
-      block->factor(system, velocity_coefficient, position_coefficient);
-      ++factorization_count_;
-      refactored = true;
-    }
-  }
-  if (refactored) {
-    ++factorization_serial_;
-  }
-
-  // Forces that the central scheme evaluates once at (t, q, v) ---------------------------------
-  const bool central = scheme == IntegratorScheme::kCentral;
-  if (central) {
+  // Forces that the central scheme evaluates once at (t, q, v)
+  if (scheme == IntegratorScheme::kCentral) {
     w.external.setZero(n);
-    system.add_applied_forces(t, q, w.v_pred, w.external);
-    system.add_inertial_forces(q, w.v_pred, w.external);
+    system.add_applied_forces(t, system.coordinates(), w.v_pred, w.external);
+    system.add_inertial_forces(system.coordinates(), w.v_pred, w.external);
   }
 
-  // Linearly implicit solve, then optional Newton iterations ----------------------------------
-  // Initial guess: zero when every block is constant (one solve is exact for linear models);
-  // the last acceleration for Newmark when some block is state-dependent, so that the terms the
-  // effective matrix leaves out (d g / d qd, d(M a) / dq, geometric stiffness, state-dependent
-  // applied forces) enter the linearly implicit step only through the O(dt) change of a, which
-  // keeps that step second order. The guess is the same for every block, as when the system was
-  // factored whole, so a constant model under state-dependent forces steps as it did then.
+  // Linearly implicit solve, then optional Newton iterations. Initial guess: zero when every
+  // block is constant (one solve is exact for linear models); the last acceleration for Newmark
+  // when some block is state-dependent, so that the terms the effective matrix leaves out
+  // (d g / d qd, d(M a) / dq, geometric stiffness, state-dependent applied forces) enter the
+  // linearly implicit step only through the O(dt) change of a, which keeps that step second
+  // order. The guess is the same for every block, as when the system was factored whole, so a
+  // constant model under state-dependent forces steps as it did then.
   const bool warm_start =
       any_state_dependent && scheme == IntegratorScheme::kNewmark && system.accelerations_valid();
   if (warm_start) {
@@ -419,107 +458,21 @@ void Integrator::step(System& system, double dt) {
   }
   w.q_iter = w.q_pred;
   last_iterations_ = 0;
-  const int iterations = settings_.newton_iterations;
-  for (int k = 0; k <= iterations; ++k) {
-    if (k > 0 || warm_start) {
-      w.increment = position_coefficient * w.a;
-      system.advance_coordinates(w.q_pred, w.increment, w.q_iter);
-    }
-    w.v_iter = w.v_pred + velocity_coefficient * w.a;
-    // State-dependent blocks: iterates stay admissible (free weights above their minimum), then
-    // the block is re-assembled and re-factored at the iterate.
-    bool assembled = false;
-    for (const auto& block : blocks) {
-      if (block->constant) {
-        continue;
-      }
-      const Model& model = system.model(block->model);
-      auto q_block = w.q_iter.segment(block->coordinate_offset, block->coordinate_count);
-      auto v_block = w.v_iter.segment(block->velocity_offset, block->velocity_count);
-      model.project_state(q_block, v_block);
-      model.assemble_matrices(q_block, block->matrices);
-      block->factor(system, velocity_coefficient, position_coefficient);
-      ++factorization_count_;
-      assembled = true;
-    }
-    if (assembled) {
-      ++factorization_serial_;
-    }
-
-    // b = f + g + f_int(q) - D v - M a at the iterate, block by block (a = 0 before the first
-    // solve without a warm start).
-    if (central) {
-      w.rhs = w.external;
-    } else {
-      w.rhs.setZero(n);
-      system.add_applied_forces(force_time, w.q_iter, w.v_iter, w.rhs);
-      system.add_inertial_forces(w.q_iter, w.v_iter, w.rhs);
-    }
-    for (const auto& block : blocks) {
-      const Eigen::Index vo = block->velocity_offset;
-      const Eigen::Index vc = block->velocity_count;
-      if (block->kronecker) {
-        const ModelMatrices& scalar = *system.model(block->model).scalar_matrices();
-        const Eigen::Index nodes = vc / 3;
-        NodeMap R(w.rhs.data() + vo, nodes, 3);
-        R.noalias() -=
-            scalar.stiffness * ConstNodeMap(w.q_iter.data() + block->coordinate_offset, nodes, 3);
-        if (scalar.damping.nonZeros() > 0) {
-          R.noalias() -= scalar.damping * ConstNodeMap(w.v_iter.data() + vo, nodes, 3);
-        }
-        if (k > 0 || warm_start) {
-          R.noalias() -= scalar.mass * ConstNodeMap(w.a.data() + vo, nodes, 3);
-        }
-      } else {
-        system.model(block->model)
-            .add_internal_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
-                                w.rhs.segment(vo, vc));
-        const ModelMatrices& matrices = block->full_matrices(system);
-        if (matrices.damping.nonZeros() > 0) {
-          w.rhs.segment(vo, vc).noalias() -= matrices.damping * w.v_iter.segment(vo, vc);
-        }
-        if (k > 0 || warm_start) {
-          w.rhs.segment(vo, vc).noalias() -= matrices.mass * w.a.segment(vo, vc);
-        }
-      }
-    }
-
-    if (hook_) {
-      StepSystem step_system;
-      step_system.time = force_time;
-      step_system.dt = dt;
-      step_system.position_coefficient = position_coefficient;
-      step_system.velocity_coefficient = velocity_coefficient;
-      step_system.predicted_coordinates = &w.q_iter;
-      step_system.predicted_velocities = &w.v_iter;
-      step_system.state_time = t + dt;
-      step_system.acceleration = &w.a;
-      step_system.factorization_serial = factorization_serial_;
-      step_system.fixed_coordinates = &fixed;
-      step_system.rhs = &w.rhs;
-      step_system.solve = [&w](const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-        w.blocks.solve(r, x);
-      };
-      hook_(step_system, w.delta);
-      for (const int index : fixed) {
-        w.delta[index] = 0.0;
-      }
-    } else {
-      w.blocks.solve(w.rhs, w.delta);
-    }
-    w.a += w.delta;
+  for (int k = 0; k <= settings_.newton_iterations; ++k) {
+    const bool with_acceleration = k > 0 || warm_start;
+    solve_iteration(system, dt, with_acceleration);
     last_iterations_ = k;
-    if ((k > 0 || warm_start) &&
+    if (with_acceleration &&
         w.delta.norm() <= settings_.newton_tolerance * std::max(w.a.norm(), 1e-300)) {
       break;
     }
   }
 
-  // New state: q = q_pred "+" c_q a, v = v_store + c_v a; projection; finiteness -------------
-  w.increment = position_coefficient * w.a;
+  // New state: q = q_pred "+" c_q a, v = v_store + c_v a; projection; finiteness
+  w.increment = w.coefficients.position * w.a;
   w.q_new.resize(system.coordinate_count());
   system.advance_coordinates(w.q_pred, w.increment, w.q_new);
-  w.v_new = w.v_store + store_coefficient * w.a;
+  w.v_new = w.v_store + w.coefficients.store * w.a;
   for (const int index : fixed) {
     w.v_new[index] = 0.0;
   }
@@ -532,6 +485,93 @@ void Integrator::step(System& system, double dt) {
                      "); the state is unchanged");
   }
   system.commit_step(w.q_new, w.v_new, w.a, t + dt);
+}
+
+bool Integrator::factor_constant_blocks(const System& system) {
+  // Constant blocks of A: factored once per dt and scheme
+  Workspace& w = *work_;
+  const StepCoefficients& c = w.coefficients;
+  w.blocks.layout(system);
+  bool refactored = false;
+  bool any_state_dependent = false;
+  for (const auto& block : w.blocks.blocks) {
+    if (!block->constant) {
+      any_state_dependent = true;
+    } else if (!block->factored || block->position_coefficient != c.position ||
+               block->velocity_coefficient != c.velocity) {
+      block->factor(system, c.velocity, c.position);
+      ++factorization_count_;
+      refactored = true;
+    }
+  }
+  if (refactored) {
+    ++factorization_serial_;
+  }
+  return any_state_dependent;
+}
+
+void Integrator::solve_iteration(const System& system, double dt, bool with_acceleration) {
+  Workspace& w = *work_;
+  const StepCoefficients& c = w.coefficients;
+  const std::vector<int>& fixed = system.fixed_coordinates();
+  if (with_acceleration) {
+    w.increment = c.position * w.a;
+    system.advance_coordinates(w.q_pred, w.increment, w.q_iter);
+  }
+  w.v_iter = w.v_pred + c.velocity * w.a;
+  // State-dependent blocks: iterates stay admissible (free weights above their minimum), then
+  // the block is re-assembled and re-factored at the iterate.
+  bool assembled = false;
+  for (const auto& block : w.blocks.blocks) {
+    if (block->constant) {
+      continue;
+    }
+    const Model& model = system.model(block->model);
+    auto q_block = w.q_iter.segment(block->coordinate_offset, block->coordinate_count);
+    auto v_block = w.v_iter.segment(block->velocity_offset, block->velocity_count);
+    model.project_state(q_block, v_block);
+    model.assemble_matrices(q_block, block->matrices);
+    block->factor(system, c.velocity, c.position);
+    ++factorization_count_;
+    assembled = true;
+  }
+  if (assembled) {
+    ++factorization_serial_;
+  }
+  // b = f + g + f_int(q) - D v - M a at the iterate, block by block (a = 0 before the first
+  // solve without a warm start).
+  if (settings_.scheme == IntegratorScheme::kCentral) {
+    w.rhs = w.external;
+  } else {
+    w.rhs.setZero(system.velocity_count());
+    system.add_applied_forces(c.force_time, w.q_iter, w.v_iter, w.rhs);
+    system.add_inertial_forces(w.q_iter, w.v_iter, w.rhs);
+  }
+  subtract_block_terms(system, with_acceleration, w);
+  if (hook_) {
+    StepSystem step_system;
+    step_system.time = c.force_time;
+    step_system.dt = dt;
+    step_system.position_coefficient = c.position;
+    step_system.velocity_coefficient = c.velocity;
+    step_system.predicted_coordinates = &w.q_iter;
+    step_system.predicted_velocities = &w.v_iter;
+    step_system.state_time = system.time() + dt;
+    step_system.acceleration = &w.a;
+    step_system.factorization_serial = factorization_serial_;
+    step_system.fixed_coordinates = &fixed;
+    step_system.rhs = &w.rhs;
+    step_system.solve = [&w](const Eigen::VectorXd& r, Eigen::VectorXd& x) {
+      w.blocks.solve(r, x);
+    };
+    hook_(step_system, w.delta);
+    for (const int index : fixed) {
+      w.delta[index] = 0.0;
+    }
+  } else {
+    w.blocks.solve(w.rhs, w.delta);
+  }
+  w.a += w.delta;
 }
 
 }  // namespace dnurbs

@@ -122,6 +122,12 @@ class Integrator {
 
  private:
   void initial_acceleration(System& system);
+  // Factors the constant blocks whose coefficients changed; true if some block is
+  // state-dependent.
+  bool factor_constant_blocks(const System& system);
+  // One solve of A delta = b at the current iterate (re-factoring state-dependent blocks), then
+  // a += delta; `with_acceleration`: b subtracts M a (after the first solve or a warm start).
+  void solve_iteration(const System& system, double dt, bool with_acceleration);
 
   IntegratorSettings settings_;
   SolveHook hook_;

@@ -16,8 +16,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/error.h"
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
 #include "nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/swung_sample_shapes.h"
