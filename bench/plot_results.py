@@ -194,7 +194,7 @@ def main():
                       fmt(r["vector_pass_seconds"]), fmt(r["step_seconds"]),
                       fmt(r["step_to_back_substitution"]), fmt(r["step_to_vector_pass"])]
                      for r in machine]))
-    md.append("\n## Modelling only what a scene needs\n")
+    md.append("\n## Modeling only what a scene needs\n")
     md.append(table(["model", "active coordinates (chosen)", "active coordinates (naive)",
                      "constant matrices (chosen)", "naive [s/step]", "chosen [s/step]", "saving",
                      "error against naive"],

@@ -1,5 +1,5 @@
 #pragma once
-// The holonomic constraint interface (seed 001 eqs 1.39-1.40; DESIGN.md, "Constraints"):
+// The holonomic constraint interface (Terzopoulos 2003, eqs. 1.39-1.40; DESIGN.md, "Constraints"):
 // C(q, t) = 0 with its sparse Jacobian C_q, its rate Cdot = C_q qd + C_t and the
 // velocity-product term sigma = -C_tt - (C_q qd)_q qd - 2 C_qt qd, so that the constrained
 // acceleration satisfies C_q qdd = sigma - 2 alpha Cdot - beta^2 C.

@@ -173,7 +173,8 @@ void ConstraintSolver::solve_iteration(const System& system, const StepSystem& s
     C_q.prune(0.0);
   }
 
-  // Right-hand side of the Baumgarte rows (seed 001 eq 1.40), scaled for the end of the step.
+  // Right-hand side of the Baumgarte rows (Terzopoulos 2003, eq. 1.40), scaled for the end of the
+  // step.
   Eigen::VectorXd target(rows_);
   const Eigen::VectorXd current = C_q * *step.acceleration;
   for (const Entry& entry : constraints_) {
@@ -190,7 +191,7 @@ void ConstraintSolver::solve_iteration(const System& system, const StepSystem& s
         scale;
   }
 
-  // Schur complement S = C_q A^-1 C_q^T, rebuilt only when C_q or A's factorisation changed.
+  // Schur complement S = C_q A^-1 C_q^T, rebuilt only when C_q or A's factorization changed.
   const std::uint64_t factorization = step.factorization_serial;
   if (!cache_valid_ || factorization != cached_factorization_ ||
       !same_matrix(C_q, cached_jacobian_)) {

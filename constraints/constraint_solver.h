@@ -1,5 +1,6 @@
 #pragma once
-// Baumgarte-stabilised constrained steps (seed 001 eqs 1.39-1.40; DESIGN.md, "Constraints").
+// Baumgarte-stabilized constrained steps (Terzopoulos 2003, eqs. 1.39-1.40; DESIGN.md,
+// "Constraints").
 //
 // Each (Newton) iteration of an integrator step solves, for the acceleration increment da and
 // the multipliers lambda,
@@ -14,12 +15,12 @@
 //   (1 + 2 alpha c_v + beta^2 c_q) C_q da = sigma - 2 alpha Cdot - beta^2 C - C_q a,
 //
 // all evaluated at the iterate (q_iter, v_iter) of the step's end time, a the acceleration so
-// far. Imposing it at the end of the step (instead of the start) keeps the stabilisation stable
+// far. Imposing it at the end of the step (instead of the start) keeps the stabilization stable
 // for any alpha dt, and for small dt the violation follows C0 (1 + alpha t) exp(-alpha t).
 //
 // The system is solved by the Schur complement on the constraint rows, reusing the
-// integrator's factorisation of A: X = A^-1 C_q^T (one back-substitution per row, kept while
-// C_q and the factorisation do not change), S = C_q X, lambda = S^+ (C_q A^-1 b - r),
+// integrator's factorization of A: X = A^-1 C_q^T (one back-substitution per row, kept while
+// C_q and the factorization do not change), S = C_q X, lambda = S^+ (C_q A^-1 b - r),
 // da = A^-1 b - X lambda. S^+ is the pseudo-inverse from S's eigen-decomposition: redundant or
 // conflicting constraints make S singular; the singular directions are reported with the
 // constraints they involve, and the step is the least-squares (minimum-norm lambda) answer.
@@ -120,7 +121,7 @@ class ConstraintSolver {
   int rows_ = 0;
   Evaluation evaluation_;
   std::vector<Eigen::Triplet<double>> triplets_;
-  // Schur complement cache: valid while C_q and the integrator's factorisation are unchanged.
+  // Schur complement cache: valid while C_q and the integrator's factorization are unchanged.
   SparseMatrix cached_jacobian_;
   bool cache_valid_ = false;
   std::uint64_t cached_factorization_ = 0;

@@ -37,7 +37,7 @@ void PointTargetConstraint::evaluate(const System& system, ConstVectorRef q, Con
                                      double time, ConstraintRows& rows) const {
   const ModelView view = model_view(system, model_, q, qd);
   const SparseMatrix L = view.model.position_jacobian(view.q, u_);
-  // seed 001 eq 1.40: C = x - x_target, Cdot = L qd - xdot_target,
+  // Terzopoulos 2003, eq. 1.40: C = x - x_target, Cdot = L qd - xdot_target,
   // sigma = -C_tt - (C_q qd)_q qd = xddot_target - Ldot qd.
   rows.value->segment<3>(rows.row) = view.model.position(view.q, u_) - target_.position(time);
   rows.rate->segment<3>(rows.row) = L * view.qd - target_.velocity(time);

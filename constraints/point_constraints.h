@@ -1,8 +1,8 @@
 #pragma once
-// Point constraints (seed 001 eqs 1.39-1.40): a material point held at a target, two material
-// points of two models joined (ball joint), and a hinge made of two ball joints. They work on
-// any Model through x(u), L(u) and Ldot(u) qd, so D-NURBS surface points, superquadric points and
-// grid nodes are all constrained the same way.
+// Point constraints (Terzopoulos 2003, eqs. 1.39-1.40): a material point held at a target, two
+// material points of two models joined (ball joint), and a hinge made of two ball joints. They work
+// on any Model through x(u), L(u) and Ldot(u) qd, so D-NURBS surface points, superquadric points
+// and grid nodes are all constrained the same way.
 
 #include <memory>
 #include <string>
@@ -73,7 +73,7 @@ class HingeConstraint : public Constraint {
 
 /// A control point of a D-NURBS model held at a fixed position by a multiplier (3 rows, linear:
 /// C = P_i - P_target, sigma = 0). Prefer DNurbsModel::fix_control_point (elimination) for
-/// control points that never move; this form lets a Baumgarte-stabilised constraint pull a
+/// control points that never move; this form lets a Baumgarte-stabilized constraint pull a
 /// control point to a new place.
 class ControlPointConstraint : public Constraint {
  public:

@@ -7,9 +7,9 @@
 #include <Eigen/SparseCholesky>
 #include <nlopt.hpp>
 
+#include "core/error.h"
 #include "design/point_set.h"
 #include "nurbs/closest_point.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {
@@ -98,7 +98,7 @@ Eigen::VectorXd solve_least_squares(const DNurbsModel& model, const Eigen::Vecto
   return q;
 }
 
-// Free weights: x is rational in q, so each iteration minimises
+// Free weights: x is rational in q, so each iteration minimizes
 // (1/2) sum |x(u_k; q) - p_k|^2 + (s/2) ... with NLopt's LD_LBFGS, gradient
 // sum L_k^T (x_k - p_k) - s f_int(q), weights bounded below by the model's minimum weight.
 struct NonlinearFit {

@@ -2,7 +2,7 @@
 // Fitting D-NURBS curves and surfaces to points (issue 9): least squares plus a smoothness
 // energy,
 //
-//   minimise  (1/2) sum_k |x(u_k; q) - p_k|^2 + (smoothness / 2) q^T K q,
+//   minimize  (1/2) sum_k |x(u_k; q) - p_k|^2 + (smoothness / 2) q^T K q,
 //
 // K the model's stiffness (its material: tension and rigidity), the parameter u_k of each point
 // found by closest-point projection onto the current shape and re-projected between iterations

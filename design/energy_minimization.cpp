@@ -59,7 +59,7 @@ std::vector<int> velocity_to_coordinate(const System& system) {
   return map;
 }
 
-// The optimisation problem on the free coordinates: x = q[free], the rest held at q0.
+// The optimization problem on the free coordinates: x = q[free], the rest held at q0.
 struct Problem {
   const System* system = nullptr;
   const ConstraintSolver* constraints = nullptr;

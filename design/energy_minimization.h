@@ -1,17 +1,17 @@
 #pragma once
-// Energy-minimising design (issue 9): the static shape of a System of D-NURBS models found by
-// minimising its elastic energy minus the work of the applied forces,
+// Energy-minimizing design (issue 9): the static shape of a System of D-NURBS models found by
+// minimizing its elastic energy minus the work of the applied forces,
 //
-//   minimise  Pi(q) = sum_models E_i(q_i) - f . q      subject to  C(q) = 0,  w >= w_min,
+//   minimize  Pi(q) = sum_models E_i(q_i) - f . q      subject to  C(q) = 0,  w >= w_min,
 //
 // with NLopt. E_i = (1/2) q^T K(q) q is the model's potential_energy(); its gradient is
 // -f_int(q) from add_internal_force (exact also for free weights, where K depends on q). f is the
 // applied force evaluated once at the system's current state (as solve_static_equilibrium
 // does). Deformable superquadrics take part with their translation, q_s and q_d (their
 // orientation, a quaternion, is held: rotation velocities are not variables), so the same call
-// minimises the energy of a superquadric's q_s (its shape stiffness) under forces. C are the rows
+// minimizes the energy of a superquadric's q_s (its shape stiffness) under forces. C are the rows
 // of a ConstraintSolver (any constraint type of the constraints layer, equalities with their
-// analytic Jacobian C_q). Fixed coordinates keep their values and are not optimisation variables;
+// analytic Jacobian C_q). Fixed coordinates keep their values and are not optimization variables;
 // free weights of D-NURBS models are bounded below by the model's minimum weight.
 
 #include <string>
@@ -58,7 +58,7 @@ struct DesignResult {
 double design_energy(const System& system, const Eigen::VectorXd& applied_force,
                      const Eigen::VectorXd& q, Eigen::VectorXd* gradient);
 
-/// Minimises Pi over the free coordinates of `system`, starting at its current coordinates, with
+/// Minimizes Pi over the free coordinates of `system`, starting at its current coordinates, with
 /// the rows of `constraints` (may be null) as equalities. Does not change `system`; use
 /// system.set_coordinates / set_state with the result. Throws Error for a model whose velocities
 /// cannot be mapped to coordinates (sizes differ and it is not a DeformableSuperquadricModel),

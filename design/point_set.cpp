@@ -45,7 +45,7 @@ Eigen::MatrixX3d load_points(const std::filesystem::path& path) {
     std::istringstream stream(line);
     Eigen::Vector3d point;
     std::string extra;
-    // Read as strings so that "nan" and "inf" are recognised and reported as non-finite.
+    // Read as strings so that "nan" and "inf" are recognized and reported as non-finite.
     std::string x;
     std::string y;
     std::string z;

@@ -10,13 +10,13 @@
 #include <Eigen/Eigenvalues>
 #include <nlopt.hpp>
 
-#include "design/point_set.h"
 #include "core/error.h"
+#include "design/point_set.h"
 
 namespace dnurbs {
 namespace {
 
-// Optimisation variables: centre (3), rotation vector (3), sizes (3), e1, e2, t1, t2, b1.
+// Optimization variables: centre (3), rotation vector (3), sizes (3), e1, e2, t1, t2, b1.
 constexpr int kVariableCount = 14;
 enum : int {
   kCentre = 0,
@@ -117,8 +117,8 @@ double body_radial_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& siz
     return d;
   }
   // d = |e| (1 - G), G = F^(-e1/2), F = S^(e2/e1) + gz, S = gx + gy (the inside-outside
-  // function of the superellipsoid e of seed 001 eq 1.30, see the header); adjoints accumulate
-  // backwards.
+  // function of the superellipsoid e of Terzopoulos 2003, eq. 1.30, see the header); adjoints
+  // accumulate backwards.
   BodyDistanceGradient& g = *gradient;
   const double adjoint_radius = 1.0 - G;
   const double adjoint_G = -radius;

@@ -1,14 +1,14 @@
 #pragma once
 // Fitting a superquadric with global deformations to points (issue 9): the rigid pose
 // (centre c, rotation R), sizes (A1, A2, A3) = a (a1, a2, a3), squareness (e1, e2), tapering
-// (t1, t2) and bending amplitude b1, found by minimising the squared radial distances
+// (t1, t2) and bending amplitude b1, found by minimizing the squared radial distances
 //
 //   d_k = |e_k| (1 - F(e_k)^(-e1/2)),
 //   F(e) = ((e_x/A1)^2/e2 + (e_y/A2)^2/e2)^(e2/e1) + (e_z/A3)^2/e1   (inside-outside function),
 //
 // where e_k is point k mapped back to the undeformed superellipsoid: p = R^T (x_k - c), bending
 // and tapering undone in closed form (z is unchanged by both). The bend's offset b2 and
-// frequency b3 are settings (held), twist and shear are zero. NLopt's bounded LD_LBFGS minimises
+// frequency b3 are settings (held), twist and shear are zero. NLopt's bounded LD_LBFGS minimizes
 // (1/N) sum d_k^2 with its analytic gradient (superquadric_fit_objective) from starts at the
 // centroid and the principal axes of the points (every axis assignment and sign), then the best
 // start is polished. The derivative-free LN_BOBYQA remains selectable: it needs no derivative

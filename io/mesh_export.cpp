@@ -12,8 +12,8 @@
 #include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
 
-#include "io/atomic_write.h"
 #include "core/error.h"
+#include "io/atomic_write.h"
 
 namespace dnurbs {
 namespace {
@@ -52,7 +52,7 @@ void remove_temporaries(const TemporaryFileSystem& file_system) {
   }
 }
 
-// Diffuse colours given to the meshes in turn
+// Diffuse colors given to the meshes in turn
 constexpr std::array<std::array<float, 3>, 6> kPalette = {{{0.80f, 0.52f, 0.25f},
                                                            {0.30f, 0.55f, 0.80f},
                                                            {0.45f, 0.70f, 0.35f},

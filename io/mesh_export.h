@@ -26,7 +26,7 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path);
 std::string assimp_format_id(MeshFormat format);
 
 /// Writes the meshes into one file, the format chosen by the extension: one node and one
-/// material (named after the mesh, with its own diffuse colour) per mesh, normals and (u, v)
+/// material (named after the mesh, with its own diffuse color) per mesh, normals and (u, v)
 /// texture coordinates where the mesh has them (and the format stores them).
 ///
 /// Every file the exporter writes (the .obj and its .mtl, the .gltf and its .bin) is first

@@ -20,8 +20,8 @@
 #include <Eigen/Core>
 
 #include "io/clone_ptr.h"
-#include "io/schedule.h"
 #include "io/scene_spec.h"
+#include "io/schedule.h"
 
 namespace dnurbs {
 
@@ -95,7 +95,7 @@ struct SceneOutput {
 };
 
 /// Static design settings ("design", design/energy_minimization.h DesignSettings): `dnurbs design`
-/// minimises the models' elastic energy minus the work of the forces at time 0, subject to the
+/// minimizes the models' elastic energy minus the work of the forces at time 0, subject to the
 /// constraints as equalities, instead of running the dynamics (`dnurbs run` ignores it).
 struct SceneDesign {
   std::string algorithm = "slsqp";  ///< "slsqp" or "auglag_lbfgs"

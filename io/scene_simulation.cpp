@@ -69,7 +69,7 @@ int segments(int resolution, double scale, int minimum) {
   return std::max(minimum, static_cast<int>(std::lround(scale * resolution)));
 }
 
-// Sizes of a symmetric pattern and of its LDL^T factor, and the work of one factorisation.
+// Sizes of a symmetric pattern and of its LDL^T factor, and the work of one factorization.
 struct FactorSize {
   long long matrix_non_zeros = 0;
   long long factor_non_zeros = 0;   // -1 if the pattern could not be factored
@@ -145,7 +145,7 @@ SceneModelCost model_cost(const Model& model) {
   c.matrix_non_zeros = size.matrix_non_zeros;
   c.factor_non_zeros = size.factor_non_zeros;
   // One solve: a forward and a backward substitution per right-hand side with a constant
-  // factor; a factorisation first when the matrices change with the state
+  // factor; a factorization first when the matrices change with the state
   const int right_hand_sides = c.kronecker_block > 0 ? c.kronecker_block : 1;
   c.solve_work = 2.0 * static_cast<double>(size.factor_non_zeros) * right_hand_sides +
                  (c.constant_matrices ? 0.0 : size.factorization_work);

@@ -12,11 +12,11 @@
 #include <Eigen/Core>
 
 #include "constraints/constraint_solver.h"
-#include "dynamics/integrators/integrator.h"
+#include "core/error.h"
 #include "dynamics/core/system.h"
+#include "dynamics/integrators/integrator.h"
 #include "io/checkpoint.h"
 #include "io/scene.h"
-#include "core/error.h"
 #include "surface/triangle_mesh.h"
 
 namespace dnurbs {
@@ -53,7 +53,7 @@ struct SceneModelCost {
   long long matrix_non_zeros = 0;
   long long factor_non_zeros = 0;
   /// Work of one solve in factor entries touched: 2 nnz(L) per right-hand side, plus the
-  /// factorisation (sum of squared column counts of L) when the matrices change with the state
+  /// factorization (sum of squared column counts of L) when the matrices change with the state
   double solve_work = 0.0;
   /// The automatic choice (fixed weights, rigid or global superquadric parts, deformation
   /// regions; empty when the model takes the naive path) and the naive path's active

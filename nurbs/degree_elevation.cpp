@@ -36,7 +36,7 @@ void check_elevation(const KnotVector& knots, int degree_increase) {
 }
 
 // Boehm's knot insertion, once (Piegl & Tiller eq. 5.15): the new points are convex
-// combinations of old neighbours, alpha_i = (u - t_i) / (t_{i+p} - t_i) in [0, 1].
+// combinations of old neighbors, alpha_i = (u - t_i) / (t_{i+p} - t_i) in [0, 1].
 void insert_once(std::vector<double>& knots, Eigen::MatrixXd& points, int p, double u) {
   const int k =
       static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) - knots.begin()) - 1;

@@ -49,7 +49,7 @@ const GaussLegendreRule& gauss_legendre_rule(int point_count) {
     throw make_error("Gauss-Legendre rule with ", point_count, " points: must be in 1..",
                      kMaxGaussPoints);
   }
-  // Function-local statics are initialised once, thread-safely.
+  // Function-local statics are initialized once, thread-safely.
   static const std::array<GaussLegendreRule, kMaxGaussPoints> rules = [] {
     std::array<GaussLegendreRule, kMaxGaussPoints> all;
     for (int n = 1; n <= kMaxGaussPoints; ++n) {

@@ -45,9 +45,9 @@ int position(const std::array<MultiIndex, N>& indices, int k, int l) {
 
 // Shared core for curves and surfaces. Inputs per active control point a and quantity alpha:
 // B(alpha, a) the non-rational tensor basis derivative, w(a) the weight, P(a) the point.
-// Outputs: rational basis derivatives R(alpha, a) (seed 001 eq 1.23: dx^(alpha)/dP_a = R I_3),
-// the derivatives x^(alpha), and when free, dx^(alpha)/dw_a from differentiating
-// A^(alpha) = sum_{beta<=alpha} C(alpha,beta) W^(beta) x^(alpha-beta) with respect to w_a:
+// Outputs: rational basis derivatives R(alpha, a) (Terzopoulos 2003, eq. 1.23: dx^(alpha)/dP_a = R
+// I_3), the derivatives x^(alpha), and when free, dx^(alpha)/dw_a from differentiating A^(alpha) =
+// sum_{beta<=alpha} C(alpha,beta) W^(beta) x^(alpha-beta) with respect to w_a:
 //   W dx^(alpha) = B^(alpha) P - sum_{beta<=alpha} C B^(beta) x^(alpha-beta)
 //                  - sum_{0<beta<=alpha} C W^(beta) dx^(alpha-beta).
 template <size_t N, typename BasisMatrix, typename WeightColumns, typename Points>

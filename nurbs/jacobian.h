@@ -1,7 +1,7 @@
 #pragma once
-// The generalized-coordinate Jacobian of D-NURBS (seed 001 eq 1.23 and its surface analogue,
-// below eq 1.27): J = dx/dq of a point and of its parametric derivatives with respect to the
-// control points and, when weights are free, the weights. Only the (p + 1) or (p + 1)(q + 1)
+// The generalized-coordinate Jacobian of D-NURBS (Terzopoulos 2003, eq. 1.23 and its surface
+// analogue, below eq 1.27): J = dx/dq of a point and of its parametric derivatives with respect to
+// the control points and, when weights are free, the weights. Only the (p + 1) or (p + 1)(q + 1)
 // active control points appear; evaluation uses fixed-capacity storage and never allocates.
 
 #include <array>
@@ -69,8 +69,8 @@ void surface_jacobian(const NurbsSurface& surface, double u, double v, int order
 /// the point or parametric derivative in the coordinate direction qd, given as the rates of all
 /// control points (`point_rates`, control_point_count by 3) and of all weights (`weight_rates`,
 /// control_point_count; zero for fixed weights). It is the velocity-product part of
-/// d^2 x^(d) / dt^2 = J qdd + Jdot qd, which constraints need (seed 001 eq 1.40's sigma). Zero
-/// when weight_rates is zero. Results: curve rows d, surface entries by SurfaceQuantity.
+/// d^2 x^(d) / dt^2 = J qdd + Jdot qd, which constraints need (Terzopoulos 2003, eq. 1.40's sigma).
+/// Zero when weight_rates is zero. Results: curve rows d, surface entries by SurfaceQuantity.
 void curve_jacobian_rate(const NurbsCurve& curve, double u, int order,
                          const Eigen::MatrixX3d& point_rates, const Eigen::VectorXd& weight_rates,
                          CurveDerivatives& result);

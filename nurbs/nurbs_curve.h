@@ -1,6 +1,6 @@
 #pragma once
-// NURBS curves in 3-D (seed 001 eq 1.21 with fixed time): points, derivatives, tangents and
-// curvature, rational or not, open or periodic.
+// NURBS curves in 3-D (Terzopoulos 2003, eq. 1.21 with fixed time): points, derivatives, tangents
+// and curvature, rational or not, open or periodic.
 
 #include <Eigen/Core>
 

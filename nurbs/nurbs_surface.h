@@ -1,6 +1,7 @@
 #pragma once
-// Tensor-product NURBS surfaces in 3-D (seed 001 eq 1.27 with fixed time): points, partial
-// derivatives, normals and curvatures, rational or not, open or periodic in either direction.
+// Tensor-product NURBS surfaces in 3-D (Terzopoulos 2003, eq. 1.27 with fixed time): points,
+// partial derivatives, normals and curvatures, rational or not, open or periodic in either
+// direction.
 
 #include <array>
 

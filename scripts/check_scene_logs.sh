@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Behaviour check for refactoring: runs every scene in examples/scenes with the built dnurbs
+# Behavior check for refactoring: runs every scene in examples/scenes with the built dnurbs
 # command and compares its log.csv byte for byte with the log recorded in
-# tests/data/scene_logs/<scene>.csv (recorded before a change that must not alter behaviour).
+# tests/data/scene_logs/<scene>.csv (recorded before a change that must not alter behavior).
 # A scene that stops as diverged must stop the same way (same exit status, same log).
 # Usage: scripts/check_scene_logs.sh [BUILD_DIR] [--record]
 set -euo pipefail

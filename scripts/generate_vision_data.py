@@ -19,7 +19,7 @@ and 0 outside, so the intensity sum is the shape's area (volume) to the sub-samp
                        circle and breathing (semi-axes 18 +- 3 and 12 +- 2), with Gaussian noise
                        of sigma 0.15, for a Kalman snake to track; truth.csv lists the centre,
                        semi-axes and rotation per frame.
-PNG files are 8-bit greyscale (written here with zlib, no colour conversion), PGM files binary
+PNG files are 8-bit greyscale (written here with zlib, no color conversion), PGM files binary
 P5, NRRD files raw uchar with the data attached. Needs Debian's python3 and python3-numpy.
 """
 import argparse
@@ -59,7 +59,7 @@ def quantize(image):
 
 
 def write_png(path, image):
-    """8-bit greyscale PNG (colour type 0), rows filtered with filter type 0."""
+    """8-bit greyscale PNG (color type 0), rows filtered with filter type 0."""
     data = quantize(image)
     height, width = data.shape
     raw = b"".join(b"\x00" + data[row].tobytes() for row in range(height))

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
   libeigen3-dev          # linear algebra (dense and sparse)
-  libnlopt-cxx-dev       # optimisation (design and fitting)
+  libnlopt-cxx-dev       # optimization (design and fitting)
   libassimp-dev          # mesh export and import
   nlohmann-json3-dev     # shape and scene files (JSON)
   libsuitesparse-dev     # CHOLMOD: supernodal sparse Cholesky for large blocks (core/sparse_cholesky.h)

@@ -15,7 +15,7 @@ launcher=()
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
-# -O1 -g1: the sanitizers' recommended optimisation, line tables for the reports, and a build
+# -O1 -g1: the sanitizers' recommended optimization, line tables for the reports, and a build
 # about three times faster than RelWithDebInfo
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" \
       -DDNURBS_SANITIZE=ON -DDNURBS_WARNINGS_AS_ERRORS=ON -DDNURBS_BUILD_EXAMPLES=OFF \

@@ -59,13 +59,13 @@ SurfaceError triangle_surface_error(const ParametricSurface& surface,
       const Eigen::Vector2d uv = a * triangle.uv[0] + b * triangle.uv[1] + c * triangle.uv[2];
       const Eigen::Vector3d linear =
           a * triangle.points[0] + b * triangle.points[1] + c * triangle.points[2];
-      // seed 003 eq 5: eps(u, v) = |p(u, v) - P_Poly(u, v)|
+      // Goldenstein et al. 2005, eq. 5: eps(u, v) = |p(u, v) - P_Poly(u, v)|
       const double eps = (surface.point(uv.x(), uv.y()) - linear).norm();
       error.max = std::max(error.max, eps);
       weighted += weight * eps;
     }
   }
-  error.mean = weighted / (3.0 * n * n);  // seed 003 eq 6 divided by the area
+  error.mean = weighted / (3.0 * n * n);  // Goldenstein et al. 2005, eq. 6 divided by the area
   return error;
 }
 

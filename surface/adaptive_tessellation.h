@@ -1,7 +1,7 @@
 #pragma once
-// Adaptive tessellation (seed 003 section 5): the three refinement strategies of section 5.2
-// as RefinementTests for the restricted mesh, the surface error of eqs 5-7, and the driver that
-// refines a base mesh and returns a TriangleMesh.
+// Adaptive tessellation (Goldenstein et al. 2005, section 5): the three refinement strategies of
+// section 5.2 as RefinementTests for the restricted mesh, the surface error of eqs 5-7, and the
+// driver that refines a base mesh and returns a TriangleMesh.
 
 #include <limits>
 #include <string>
@@ -15,16 +15,16 @@ namespace dnurbs {
 /// Barycentric sampling order of the surface error: the points (i, j, k) / n, i + j + k = n.
 inline constexpr int kDefaultErrorSampleOrder = 8;
 
-/// Unconditional refinement (seed 003 section 5.2.1): every triangle below `depth` bisections.
-/// Throws Error if depth < 0.
+/// Unconditional refinement (Goldenstein et al. 2005, section 5.2.1): every triangle below `depth`
+/// bisections. Throws Error if depth < 0.
 RefinementTest depth_criterion(int depth);
 
-/// Normals-based refinement (seed 003 section 5.2.2): a triangle is split while the largest
-/// angle between two of its vertex normals (the surface's unit normals) exceeds `max_angle`
+/// Normals-based refinement (Goldenstein et al. 2005, section 5.2.2): a triangle is split while the
+/// largest angle between two of its vertex normals (the surface's unit normals) exceeds `max_angle`
 /// (radians). Throws Error unless 0 < max_angle <= pi.
 RefinementTest normal_angle_criterion(double max_angle);
 
-/// The parametric error of a triangle or a mesh (seed 003 eqs 5-7): at (u, v),
+/// The parametric error of a triangle or a mesh (Goldenstein et al. 2005, eqs. 5-7): at (u, v),
 /// eps(u, v) = |S(u, v) - P(u, v)| with P the linear interpolation of the vertex points in
 /// (u, v) (the piecewise-linear mesh); `max` is its largest sample (eq 7), `mean` its integral
 /// over the (u, v) area divided by that area (eq 6).
@@ -40,9 +40,9 @@ SurfaceError triangle_surface_error(const ParametricSurface& surface,
                                     const RestrictedTriangleGeometry& triangle,
                                     int sample_order = kDefaultErrorSampleOrder);
 
-/// Surface contour error-based refinement (seed 003 section 5.2.3): a triangle is split while
-/// its sampled max error exceeds `max_error` or its mean error exceeds `mean_error` (infinity:
-/// no mean bound). Throws Error unless max_error > 0 and mean_error > 0 (not NaN) and
+/// Surface contour error-based refinement (Goldenstein et al. 2005, section 5.2.3): a triangle is
+/// split while its sampled max error exceeds `max_error` or its mean error exceeds `mean_error`
+/// (infinity: no mean bound). Throws Error unless max_error > 0 and mean_error > 0 (not NaN) and
 /// sample_order >= 1.
 RefinementTest surface_error_criterion(const ParametricSurface& surface, double max_error,
                                        double mean_error = std::numeric_limits<double>::infinity(),

@@ -64,7 +64,7 @@ Eigen::Vector3d DeformableSuperquadricShape::point(double u, double v) const {
 
 SuperquadricShapeEvaluation DeformableSuperquadricShape::evaluate(double u, double v) const {
   using Q = SuperquadricShapeParameter;
-  // seed 001 eq 1.30: s = T(e); J = dT/de de/dq_e + dT/dh dh/dq_s + dT/dq_T.
+  // Terzopoulos 2003, eq. 1.30: s = T(e); J = dT/de de/dq_e + dT/dh dh/dq_s + dT/dq_T.
   const SuperellipsoidEvaluation e = evaluate_superellipsoid(superellipsoid_parameters(), u, v);
   const auto t = apply_global_deformation(global_deformation_parameters(), half_height(), e.point);
   SuperquadricShapeEvaluation result;

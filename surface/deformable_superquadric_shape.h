@@ -1,10 +1,10 @@
 #pragma once
-// The reference shape of a deformable superquadric (seed 001 eqs 1.30-1.31):
+// The reference shape of a deformable superquadric (Terzopoulos 2003, eqs. 1.30-1.31):
 //   s(u, v) = T(e(u, v; a, a1, a2, a3, e1, e2); t1, t2, b1, b2, b3, tau, sx, sy)
 // with the superellipsoid e of surface/superellipsoid.h and the global deformation
-// T = shear o twist o bend o taper of surface/global_deformation.h, whose z is normalised by the
-// half height h = a a3. It gives s, its tangents, its Jacobian J = ds/dq_s (the J of seed 001
-// eqs 1.34-1.36) and its outward unit normal. Evaluation never allocates.
+// T = shear o twist o bend o taper of surface/global_deformation.h, whose z is normalized by the
+// half height h = a a3. It gives s, its tangents, its Jacobian J = ds/dq_s (the J of Terzopoulos
+// 2003 eqs 1.34-1.36) and its outward unit normal. Evaluation never allocates.
 //
 // For the dynamic model, x = c + R (s + d) (eq 1.35) and L = [I, B, R J, R S] (eq 1.36):
 // evaluate(u, v) gives s and J, ParametricFeMesh gives d and S,
@@ -23,7 +23,7 @@ namespace dnurbs {
 inline constexpr int kSuperquadricShapeParameterCount =
     kSuperellipsoidParameterCount + kGlobalDeformationParameterCount;  // 14
 
-/// q_s, the reference-shape coordinates of seed 001 eq 1.31, in this order (14-vector):
+/// q_s, the reference-shape coordinates of Terzopoulos 2003, eq. 1.31, in this order (14-vector):
 ///   0 a    1 a1   2 a2   3 a3   4 e1   5 e2        superellipsoid (SuperellipsoidParameters)
 ///   6 t1   7 t2                                    tapering
 ///   8 b1   9 b2  10 b3                             bending
@@ -60,7 +60,7 @@ struct SuperquadricShapeEvaluation {
   Eigen::Matrix<double, 3, kSuperquadricShapeParameterCount> jacobian;  ///< J = ds/dq_s, 3 by 14
 };
 
-/// The outward unit normal of a (u latitude, v longitude) parameterisation from its tangents:
+/// The outward unit normal of a (u latitude, v longitude) parameterization from its tangents:
 /// normalize(d_v x d_u) (for the sphere d_u x d_v points inwards). Returns false and leaves
 /// `normal` untouched where the cross product is zero or not finite.
 bool outward_unit_normal(const Eigen::Vector3d& d_u, const Eigen::Vector3d& d_v,
@@ -94,7 +94,7 @@ class DeformableSuperquadricShape {
   GlobalDeformationParameters global_deformation_parameters() const {
     return parameters_.tail<kGlobalDeformationParameterCount>();
   }
-  /// h = a a3, the half height that normalises z in the deformations.
+  /// h = a a3, the half height that normalizes z in the deformations.
   double half_height() const;
 
   /// s(u, v), 3-vector.
@@ -105,7 +105,7 @@ class DeformableSuperquadricShape {
 
   /// Jdot = d/dt J(u, v) when q_s moves at q_s_dot (u, v fixed):
   /// sum_k d^2 s/(dq_s dq_s_k) q_s_dot_k, 3 by 14, analytic. The dynamic model's Ldot
-  /// (seed 001 eq 1.36) has R Jdot + Rdot J in the q_s block; Jdot q_s_dot is the
+  /// (Terzopoulos 2003, eq. 1.36) has R Jdot + Rdot J in the q_s block; Jdot q_s_dot is the
   /// velocity-dependent acceleration of s.
   Eigen::Matrix<double, 3, kSuperquadricShapeParameterCount> jacobian_rate(
       double u, double v, const SuperquadricShapeParameters& q_s_dot) const;

@@ -74,8 +74,8 @@ Eigen::Vector3d SampledVectorField::operator()(double u, double v) const {
   const int i1 = (i + 1) % count_u_;
   const int j1 = (j + 1) % count_v_;
   auto node = [&](int p, int r) { return samples_.row(p * count_v_ + r).transpose(); };
-  // Bilinear interpolation of the four nodes of the cell (seed 003 eq 2: the continuous field
-  // from the discretised geometry image)
+  // Bilinear interpolation of the four nodes of the cell (Goldenstein et al. 2005, eq. 2: the
+  // continuous field from the discretized geometry image)
   return (1.0 - a) * ((1.0 - b) * node(i, j) + b * node(i, j1)) +
          a * ((1.0 - b) * node(i1, j) + b * node(i1, j1));
 }
@@ -121,7 +121,7 @@ Eigen::Vector3d DeformationField::apply(const Eigen::VectorXd& q, double u, doub
     throw make_error("deformation field: ", q.size(), " parameters for a cascade that uses ",
                      parameter_count_);
   }
-  // seed 003 eq 1: the cascade of basic operations at (u, v)
+  // Goldenstein et al. 2005, eq. 1: the cascade of basic operations at (u, v)
   Eigen::Vector3d p = input;
   for (const Stage& stage : stages_) {
     const Eigen::Vector3d field = stage.field(u, v);

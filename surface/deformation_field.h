@@ -1,8 +1,8 @@
 #pragma once
-// Deformation fields (seed 003 section 3): resolution-independent deformations described over
-// the continuous (u, v) domain, as a cascade of basic operations F_{u,v}(q) (eq 1) that any
-// tessellation samples at its own vertices. A vector field V: (u, v) -> R^3 (section 3.2) is a
-// function or a regular grid of samples, bilinearly interpolated (the geometry image of
+// Deformation fields (Goldenstein et al. 2005, section 3): resolution-independent deformations
+// described over the continuous (u, v) domain, as a cascade of basic operations F_{u,v}(q) (eq 1)
+// that any tessellation samples at its own vertices. A vector field V: (u, v) -> R^3 (section 3.2)
+// is a function or a regular grid of samples, bilinearly interpolated (the geometry image of
 // section 3.3, example 1); the stages are the constant field p = V(u, v) (eqs 2-3) and the
 // AddVector field p = p_previous + q_k V(u, v) (eq 4).
 
@@ -15,7 +15,7 @@
 
 namespace dnurbs {
 
-/// A vector field V: (u, v) -> R^3 (seed 003 section 3.2).
+/// A vector field V: (u, v) -> R^3 (Goldenstein et al. 2005, section 3.2).
 using VectorField = std::function<Eigen::Vector3d(double u, double v)>;
 
 /// A vector field given by samples on a regular grid of nodes over a ParameterDomain and
@@ -52,11 +52,11 @@ class SampledVectorField {
 
 /// One stage of a deformation field cascade.
 enum class DeformationKind {
-  kConstant,   ///< p = V(u, v), ignoring the previous stage (seed 003 eqs 2-3)
-  kAddVector,  ///< p = p_previous + s V(u, v), s = q_k or 1 (seed 003 eq 4)
+  kConstant,   ///< p = V(u, v), ignoring the previous stage (Goldenstein et al. 2005, eqs. 2-3)
+  kAddVector,  ///< p = p_previous + s V(u, v), s = q_k or 1 (Goldenstein et al. 2005, eq. 4)
 };
 
-/// A cascade of deformation fields over (u, v): F_{u,v}(q) of seed 003 eq 1.
+/// A cascade of deformation fields over (u, v): F_{u,v}(q) of Goldenstein et al. 2005, eq. 1.
 ///
 /// The cascade starts from an input point (the base surface's point, or zero) and applies its
 /// stages in order. Every stage is affine in q, so p is affine in q and its parameter Jacobian
@@ -107,7 +107,7 @@ ParametricSurface deformed_surface(const ParametricSurface& base, DeformationFie
                                    Eigen::VectorXd q);
 
 /// The surface p(u, v) = field.apply(q, u, v) of a cascade that starts with a constant field
-/// (a geometry image or a PCA mean, seed 003 eqs 2-4), over `domain`.
+/// (a geometry image or a PCA mean, Goldenstein et al. 2005, eqs. 2-4), over `domain`.
 ParametricSurface deformation_field_surface(
     const ParameterDomain& domain, DeformationField field, Eigen::VectorXd q,
     NormalOrientation orientation = NormalOrientation::kSuCrossSv);

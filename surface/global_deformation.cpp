@@ -10,7 +10,7 @@ namespace dnurbs {
 DeformationStep<2> taper(const Eigen::Vector3d& p, double t1, double t2, double half_height) {
   const double x = p.x();
   const double y = p.y();
-  const double zeta = p.z() / half_height;  // normalised height z/h
+  const double zeta = p.z() / half_height;  // normalized height z/h
   const double f1 = t1 * zeta + 1.0;
   const double f2 = t2 * zeta + 1.0;
   DeformationStep<2> step;

@@ -1,10 +1,10 @@
 #pragma once
-// Global deformations T of deformable superquadrics (seed 001 eq 1.30, s = T(e); DESIGN.md
-// "Deformable superquadrics"; Metaxas & Terzopoulos 1993): tapering, bending, twisting and
-// shearing along the body z axis, applied in that fixed order,
+// Global deformations T of deformable superquadrics (Terzopoulos 2003, eq. 1.30, s = T(e);
+// DESIGN.md "Deformable superquadrics"; Metaxas & Terzopoulos 1993): tapering, bending, twisting
+// and shearing along the body z axis, applied in that fixed order,
 //   T = shear o twist o bend o taper.
 // Each step gives its value and analytic derivatives with respect to the point it deforms
-// (3 by 3), its own parameters (3 by k) and the half height h = a a3 that normalises z
+// (3 by 3), its own parameters (3 by k) and the half height h = a a3 that normalizes z
 // (3 by 1), so that the chain rule composes them and carries d/da, d/da3 through h.
 // No step changes z, so every step sees the superellipsoid's z = e3. A step whose parameters
 // are all zero is the identity exactly (value, and I_3 as point derivative).

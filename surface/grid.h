@@ -1,7 +1,7 @@
 #pragma once
-// Regular (u, v) grids of nodes (DESIGN.md, "Grid surfaces"): the parameterisation of the
-// Terzopoulos surface (seed 000) and of the dynamic PDE surface (seed 002), kept separate from
-// the node positions (the coordinates) as geometry-central keeps connectivity apart from
+// Regular (u, v) grids of nodes (DESIGN.md, "Grid surfaces"): the parameterization of the
+// Terzopoulos surface (Wu & de Melo) and of the dynamic PDE surface (Romero 2005), kept separate
+// from the node positions (the coordinates) as geometry-central keeps connectivity apart from
 // geometry.
 
 #include <array>
@@ -19,7 +19,7 @@ namespace dnurbs {
 /// Node positions of a grid or chain, one row per node (#nodes by 3).
 using NodePositions = Eigen::MatrixX3d;
 
-/// A regular grid of nu by nv nodes with equal spacing h in u and v (seed 002, section 4.3:
+/// A regular grid of nu by nv nodes with equal spacing h in u and v (Romero 2005, section 4.3:
 /// "horizontal and vertical internode spacings h equal in both directions"). Node (i, j) sits
 /// at the parameter (u, v) = (i h, j h), i = 0..nu-1 along u, j = 0..nv-1 along v, and has the
 /// index k = i + nu j (u fastest). The parametric domain is [0, (nu-1) h] x [0, (nv-1) h].

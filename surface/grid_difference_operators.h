@@ -1,5 +1,5 @@
 #pragma once
-// Finite-difference operators on a regular (u, v) grid (seed 000, section 4, "Standard finite
+// Finite-difference operators on a regular (u, v) grid (Wu & de Melo, section 4, "Standard finite
 // difference approximation as suggested by Terzopoulos et al."), as sparse node-by-node
 // matrices acting on node fields (one column per coordinate). A difference that would reach a
 // node outside the grid is not computable: its row is zero (a free edge).

@@ -15,7 +15,7 @@ NodeChain::NodeChain(int count, bool closed) : count_(count), closed_(closed) {
   }
 }
 
-int NodeChain::neighbour(int i, int offset) const {
+int NodeChain::neighbor(int i, int offset) const {
   const int j = i + offset;
   if (closed_) {
     return ((j % count_) + count_) % count_;

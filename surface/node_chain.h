@@ -1,6 +1,6 @@
 #pragma once
-// 1-D chains of nodes, open or closed (seed 001, section 2.3: nodes u_i = v(i h), i = 0..N-1):
-// the parameterisation of snakes, kept apart from the node positions.
+// 1-D chains of nodes, open or closed (Terzopoulos 2003, section 2.3: nodes u_i = v(i h), i =
+// 0..N-1): the parameterization of snakes, kept apart from the node positions.
 
 #include <array>
 #include <utility>
@@ -9,8 +9,8 @@
 
 namespace dnurbs {
 
-/// N nodes on s in [0, 1]. Open: node i at s = i h with h = 1/(N-1) (seed 001, section 2.3).
-/// Closed (cyclic): node i at s = i h with h = 1/N, node N wrapping to node 0.
+/// N nodes on s in [0, 1]. Open: node i at s = i h with h = 1/(N-1) (Terzopoulos 2003,
+/// section 2.3). Closed (cyclic): node i at s = i h with h = 1/N, node N wrapping to node 0.
 class NodeChain {
  public:
   /// Throws Error naming the count if it is below 3 (open) or 4 (closed): the rigidity term
@@ -22,7 +22,7 @@ class NodeChain {
   double spacing() const { return closed_ ? 1.0 / count_ : 1.0 / (count_ - 1); }
   double parameter(int i) const { return i * spacing(); }
   /// The index of node i + offset, modulo N when closed; -1 past an open chain's ends.
-  int neighbour(int i, int offset) const;
+  int neighbor(int i, int offset) const;
   /// The two nodes and linear weights that interpolate the point at s (clamped to [0, 1] when
   /// open, wrapped when closed).
   std::array<std::pair<int, double>, 2> linear_weights(double s) const;

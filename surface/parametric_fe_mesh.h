@@ -1,6 +1,6 @@
 #pragma once
 // The (u, v) finite-element mesh of a deformable superquadric's local deformations
-// (seed 001 eqs 1.32-1.33: d = S q_d, q_d = (..., d_i, ...)). The parameter domain
+// (Terzopoulos 2003, eqs. 1.32-1.33: d = S q_d, q_d = (..., d_i, ...)). The parameter domain
 // u in [-pi/2, pi/2] (latitude), v in [-pi, pi) (longitude) has the topology of a sphere:
 //   - cells_u by cells_v bilinear (C0) cells of equal size in parameter space;
 //   - periodic in v: the node column at v = pi is the one at v = -pi;
@@ -109,7 +109,7 @@ class ParametricFeMesh {
                                                int points_per_direction = 2) const;
 
   /// The scalar matrix m_ab = integral N_a N_b du dv over the parameter domain (unit density,
-  /// no area element): handy for regularising or projecting q_d.
+  /// no area element): handy for regularizing or projecting q_d.
   Eigen::SparseMatrix<double> scalar_mass_matrix(int points_per_direction = 2) const;
 
  private:

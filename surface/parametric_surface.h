@@ -1,8 +1,8 @@
 #pragma once
 // A generic parametric surface S(u, v) over a parameter rectangle: what the uniform and the
-// adaptive tessellations (seed 003 section 5: "a sampling function to evaluate the geometry of
-// the surface at a vertex of the mesh") see of a NURBS surface, a superquadric, a deformed
-// surface or a dynamic model. It carries the rectangle, which of its edges are identified
+// adaptive tessellations (Goldenstein et al. 2005, section 5: "a sampling function to evaluate the
+// geometry of the surface at a vertex of the mesh") see of a NURBS surface, a superquadric, a
+// deformed surface or a dynamic model. It carries the rectangle, which of its edges are identified
 // (periodic directions, seams of closed surfaces) and which collapse to a single point (poles).
 
 #include <functional>
@@ -49,7 +49,7 @@ struct ParameterDomain {
 /// Which cross product of the parametric tangents the surface's unit normal follows.
 enum class NormalOrientation {
   kSuCrossSv,  ///< n ~ S_u x S_v (NURBS surfaces)
-  kSvCrossSu,  ///< n ~ S_v x S_u (the superquadric's (latitude, longitude) parameterisation)
+  kSvCrossSu,  ///< n ~ S_v x S_u (the superquadric's (latitude, longitude) parameterization)
 };
 
 /// (u, v) -> a 3-vector: a surface point or a unit normal.
@@ -59,8 +59,8 @@ using SurfaceFunction = std::function<Eigen::Vector3d(double u, double v)>;
 ///
 /// The unit normal is the given normal function if there is one; otherwise it comes from
 /// central differences of S (ParametricSurface::kDifferenceStep of the domain's extent, one-sided
-/// steps kept inside the domain at open edges) as the normalised cross product named by the
-/// orientation; on a pole it is the normalised mean of the difference normals on a ring of
+/// steps kept inside the domain at open edges) as the normalized cross product named by the
+/// orientation; on a pole it is the normalized mean of the difference normals on a ring of
 /// parameters just off the pole. Tessellations wind their triangles so that the geometric
 /// normal (b - a) x (c - a) points the same way.
 class ParametricSurface {

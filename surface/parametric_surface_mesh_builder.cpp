@@ -43,7 +43,7 @@ int ParametricSurfaceMeshBuilder::push(double u, double v, const Eigen::Vector3d
 
 void ParametricSurfaceMeshBuilder::add_triangle(int a, int b, int c) {
   if (a == b || b == c || c == a) {
-    return;  // collapsed at a pole: its (u, v) area maps onto an edge of its neighbours
+    return;  // collapsed at a pole: its (u, v) area maps onto an edge of its neighbors
   }
   if (surface_->orientation() == NormalOrientation::kSuCrossSv) {
     triangles_.emplace_back(a, b, c);

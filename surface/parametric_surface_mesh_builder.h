@@ -2,7 +2,7 @@
 // Assembles a TriangleMesh from (u, v)-space triangles of a ParametricSurface: merges each
 // pole's vertices into one, drops the triangles that collapse at a pole, and winds the rest so
 // that their geometric normal follows the surface's normal orientation. Shared by the uniform
-// tessellation and the restricted (adaptive) mesh of seed 003 section 4.
+// tessellation and the restricted (adaptive) mesh of Goldenstein et al. 2005, section 4.
 
 #include <array>
 #include <string>

@@ -12,8 +12,8 @@ namespace dnurbs {
 
 /// Samples the surface on the uniform grid of segments_u by segments_v cells over its domain
 /// and splits each cell (a, b, c, d) = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)) into the
-/// triangles (a, b, c) and (a, c, d): the base mesh of the restricted mesh of seed 003
-/// section 4.2 (restricted_mesh.h), one basic block per cell.
+/// triangles (a, b, c) and (a, c, d): the base mesh of the restricted mesh of Goldenstein et al.
+/// 2005 section 4.2 (restricted_mesh.h), one basic block per cell.
 ///
 /// Parameters are domain.u_at(i / segments_u) and domain.v_at(j / segments_v). A periodic
 /// direction has `segments` samples (the seam is not duplicated); each pole is one vertex, and

@@ -31,8 +31,9 @@ RestrictedMesh::RestrictedMesh(const ParametricSurface& surface, int base_cells_
   }
   extent_u_ = static_cast<std::int64_t>(base_cells_u) << kCellShift;
   extent_v_ = static_cast<std::int64_t>(base_cells_v) << kCellShift;
-  // seed 003 section 4.2: the base triangulation is a union of basic blocks, one per cell:
-  // (A, B, C) with apex B and (A, C, D) with apex D share their split edge, the diagonal AC
+  // Goldenstein et al. 2005, section 4.2: the base triangulation is a union of basic blocks, one
+  // per cell: (A, B, C) with apex B and (A, C, D) with apex D share their split edge, the diagonal
+  // AC
   const std::int64_t cell = std::int64_t{1} << kCellShift;
   for (int i = 0; i < base_cells_u; ++i) {
     for (int j = 0; j < base_cells_v; ++j) {
@@ -93,7 +94,8 @@ int RestrictedMesh::find_or_create_vertex(const Lattice& unwrapped) {
   vertex.key = key;
   vertex.alive = true;
   vertex.uv = unwrapped_parameter(c);
-  // seed 003 section 5: the sampling function evaluates the surface at each new vertex
+  // Goldenstein et al. 2005, section 5: the sampling function evaluates the surface at each new
+  // vertex
   vertex.point = surface_.point(vertex.uv.x(), vertex.uv.y());
   vertex.normal = surface_.unit_normal(vertex.uv.x(), vertex.uv.y());
   vertex_by_key_.emplace(key, id);
@@ -170,7 +172,7 @@ void RestrictedMesh::check_triangle(int triangle) const {
   }
 }
 
-int RestrictedMesh::neighbour(int triangle, int k) const {
+int RestrictedMesh::neighbor(int triangle, int k) const {
   check_triangle(triangle);
   const Triangle& t = triangles_[static_cast<size_t>(triangle)];
   const auto edge = edges_.find(edge_key(t.vertex[static_cast<size_t>((k + 1) % 3)],
@@ -180,9 +182,9 @@ int RestrictedMesh::neighbour(int triangle, int k) const {
 }
 
 void RestrictedMesh::bisect(int triangle, int partner, std::vector<int>* created) {
-  // seed 003 section 4.1: the edge split of the diamond (triangle, partner) at the midpoint m
-  // of their common split edge; each (apex x0, x1, x2) becomes (m, x0, x1) and (m, x2, x0),
-  // whose split edges are the parent's legs (newest-vertex bisection)
+  // Goldenstein et al. 2005, section 4.1: the edge split of the diamond (triangle, partner) at the
+  // midpoint m of their common split edge; each (apex x0, x1, x2) becomes (m, x0, x1) and (m, x2,
+  // x0), whose split edges are the parent's legs (newest-vertex bisection)
   const std::array<int, 2> pair{triangle, partner};
   std::array<Triangle, 2> parent;
   for (int p = 0; p < 2; ++p) {
@@ -224,11 +226,11 @@ void RestrictedMesh::bisect(int triangle, int partner, std::vector<int>* created
 }
 
 void RestrictedMesh::split_compatible(int triangle, int& count, std::vector<int>* created) {
-  // seed 003 section 4.2, interleaved refinement: split the neighbour across the split edge
-  // until it shares that edge as its own split edge, then split the pair
+  // Goldenstein et al. 2005, section 4.2, interleaved refinement: split the neighbor across the
+  // split edge until it shares that edge as its own split edge, then split the pair
   while (true) {
     const Triangle& t = triangles_[static_cast<size_t>(triangle)];
-    const int other = neighbour(triangle, 0);
+    const int other = neighbor(triangle, 0);
     if (other < 0) {
       bisect(triangle, -1, created);
       count += 1;
@@ -259,7 +261,8 @@ int RestrictedMesh::refine(const RefinementTest& needs_refinement, int max_level
   if (max_level < 0 || max_level > kMaxLevel) {
     throw make_error("restricted mesh: max_level ", max_level, " is outside [0, ", kMaxLevel, "]");
   }
-  // seed 003 section 5: test every triangle, split those that ask for it, test their children
+  // Goldenstein et al. 2005, section 5: test every triangle, split those that ask for it, test
+  // their children
   std::vector<int> pending = triangles();
   std::vector<int> created;
   int count = 0;
@@ -331,7 +334,7 @@ bool RestrictedMesh::weld(int vertex) {
   if (!weld_parents(vertex, parents)) {
     return false;
   }
-  // seed 003 section 4.1: the edge weld, inverse of the split
+  // Goldenstein et al. 2005, section 4.1: the edge weld, inverse of the split
   const std::vector<int> children = vertices_[static_cast<size_t>(vertex)].incident;
   for (const int child : children) {
     remove_triangle(child);
@@ -421,11 +424,11 @@ RestrictedTriangleGeometry RestrictedMesh::geometry(int triangle) const {
   return geometry_of(t.vertex, t.corner, t.level);
 }
 
-int RestrictedMesh::max_neighbour_level_difference() const {
+int RestrictedMesh::max_neighbor_level_difference() const {
   int difference = 0;
   for (const int t : triangles()) {
     for (int k = 0; k < 3; ++k) {
-      const int n = neighbour(t, k);
+      const int n = neighbor(t, k);
       if (n >= 0) {
         difference = std::max(difference, std::abs(level(t) - level(n)));
       }

@@ -1,14 +1,15 @@
 #pragma once
-// The restricted (semi-regular) binary multi-triangulation of seed 003 section 4.2 over the
-// (u, v) domain of a ParametricSurface, adapted by stellar edge splits and welds (section 4.1).
+// The restricted (semi-regular) binary multi-triangulation of Goldenstein et al. 2005, section 4.2
+// over the (u, v) domain of a ParametricSurface, adapted by stellar edge splits and welds
+// (section 4.1).
 //
 // Base mesh: a grid of base_cells_u by base_cells_v cells, each cell split by its diagonal into
 // two right triangles that form a basic block (the diagonal is the block's internal edge).
 // Every triangle stores its apex (the vertex at the right angle in (u, v) cell units, corner 0)
 // and is split across the opposite edge, its longest: newest-vertex bisection. Splitting an edge
-// splits both triangles that share it (a diamond), and a neighbour whose own split edge differs
+// splits both triangles that share it (a diamond), and a neighbor whose own split edge differs
 // is split first (interleaved refinement), so the mesh stays conforming (no T-junctions) and
-// neighbours differ by at most one level: a restricted quad-tree. Only the current mesh is
+// neighbors differ by at most one level: a restricted quad-tree. Only the current mesh is
 // stored; a vertex remembers the edge it split, so a weld (the inverse stellar operator)
 // rebuilds exactly the parents.
 //
@@ -42,8 +43,9 @@ struct RestrictedTriangleGeometry {
   int level = 0;  ///< bisections from the base mesh (0 for a base triangle)
 };
 
-/// The application's refinement test (seed 003 section 5): true if the triangle needs to be
-/// split. Coarsening welds a vertex when the test is false for every parent the weld restores.
+/// The application's refinement test (Goldenstein et al. 2005, section 5): true if the triangle
+/// needs to be split. Coarsening welds a vertex when the test is false for every parent the weld
+/// restores.
 using RefinementTest = std::function<bool(const RestrictedTriangleGeometry&)>;
 
 /// The adaptive mesh over a surface's (u, v) domain (see the file comment).
@@ -66,7 +68,7 @@ class RestrictedMesh {
 
   // Adaptation ------------------------------------------------------------------------------
   /// Splits, until no triangle below `max_level` passes the test, every triangle that does
-  /// (with the forced splits of its neighbours). Returns the number of triangles bisected.
+  /// (with the forced splits of its neighbors). Returns the number of triangles bisected.
   /// Throws Error if max_level is outside [0, kMaxLevel].
   int refine(const RefinementTest& needs_refinement, int max_level = kDefaultMaxLevel);
   /// Welds, newest vertices first and until none is left, every vertex whose weld restores
@@ -75,7 +77,7 @@ class RestrictedMesh {
   /// is always false returns the base mesh.
   int coarsen(const RefinementTest& needs_refinement);
   /// Splits triangle `triangle` across its split edge, first splitting (recursively) any
-  /// neighbour that does not share that edge as its own split edge. Returns the number of
+  /// neighbor that does not share that edge as its own split edge. Returns the number of
   /// triangles bisected. Throws Error for a triangle that is not current or at kMaxLevel.
   int split(int triangle);
   /// True if `vertex` can be welded: it was made by a split and its triangles are exactly the
@@ -95,9 +97,9 @@ class RestrictedMesh {
   int level(int triangle) const;
   RestrictedTriangleGeometry geometry(int triangle) const;
   /// The triangle across the edge opposite corner k (0, 1, 2), or -1 on an open boundary.
-  int neighbour(int triangle, int k) const;
+  int neighbor(int triangle, int k) const;
   /// The largest level difference between two triangles sharing an edge (at most 1).
-  int max_neighbour_level_difference() const;
+  int max_neighbor_level_difference() const;
   /// The deepest level of a current triangle.
   int max_level() const;
   /// Parameters (u, v) of a current vertex (seam vertices at the domain start).

@@ -1,5 +1,5 @@
 #pragma once
-// The signed powers of the superellipsoid (seed 001 below eq 1.30; DESIGN.md "Deformable
+// The signed powers of the superellipsoid (Terzopoulos 2003, below eq 1.30; DESIGN.md "Deformable
 // superquadrics"): C(w)^e = sign(cos w)|cos w|^e and S(w)^e = sign(sin w)|sin w|^e, with their
 // derivatives with respect to the angle w and the exponent e. Every result is finite for every
 // finite w and every exponent e > 0 (tested for e in [kMinSquareness, kMaxSquareness]).

@@ -1,5 +1,5 @@
 #pragma once
-// The superellipsoid of deformable superquadrics (seed 001 eq 1.30, the primitive e;
+// The superellipsoid of deformable superquadrics (Terzopoulos 2003, eq. 1.30, the primitive e;
 // DESIGN.md "Deformable superquadrics"):
 //   e(u, v) = a [a1 C(u)^e1 C(v)^e2, a2 C(u)^e1 S(v)^e2, a3 S(u)^e1],
 // u in [-pi/2, pi/2] (latitude), v in [-pi, pi) (longitude), with the signed powers of
@@ -59,7 +59,7 @@ SuperellipsoidEvaluation evaluate_superellipsoid(const SuperellipsoidParameters&
 
 /// The rate of the Jacobian when the parameters move at `parameters_dot` (u, v fixed):
 /// d/dt (de/dparameters) = sum_k d^2 e/(dparameters dparameters_k) parameters_dot_k, 3 by 6.
-/// The dynamic model needs it for Ldot (seed 001 eq 1.36).
+/// The dynamic model needs it for Ldot (Terzopoulos 2003, eq. 1.36).
 Eigen::Matrix<double, 3, kSuperellipsoidParameterCount> superellipsoid_jacobian_rate(
     const SuperellipsoidParameters& parameters, double u, double v,
     const SuperellipsoidParameters& parameters_dot);

@@ -106,7 +106,7 @@ TriangleMesh tessellate_curve_tube(const NurbsCurve& curve, int segments, double
   const int rings = static_cast<int>(us.size());
   const bool closed = curve.is_periodic();
 
-  // Rotation-minimising frame: project the previous normal onto each new normal plane
+  // Rotation-minimizing frame: project the previous normal onto each new normal plane
   std::vector<Eigen::Vector3d> tangents(static_cast<size_t>(rings));
   std::vector<Eigen::Vector3d> normals(static_cast<size_t>(rings));
   for (int k = 0; k < rings; ++k) {

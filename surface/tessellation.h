@@ -34,7 +34,7 @@ TriangleMesh tessellate_surface(const NurbsSurface& surface, int segments_u, int
 Eigen::MatrixX3d sample_curve(const NurbsCurve& curve, int segments);
 
 /// A tube of the given radius around the curve: rings of `sides` vertices at the samples of
-/// sample_curve, oriented by a rotation-minimising (parallel transported) frame. A periodic
+/// sample_curve, oriented by a rotation-minimizing (parallel transported) frame. A periodic
 /// curve gives a closed tube (the frame's twist at the seam is spread along the curve); an open
 /// curve gives an open tube without caps. uv holds (u, angle / 2 pi).
 /// Throws Error if radius <= 0, sides < 3, segments < 1, or the tangent vanishes somewhere.

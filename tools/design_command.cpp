@@ -14,7 +14,7 @@ namespace dnurbs::tools {
 
 const char* const kDesignHelp = R"(usage: dnurbs design SCENE.json [--out DIR] [options]
 
-Minimises the elastic energy of the scene's models minus the work of its forces (evaluated at
+Minimizes the elastic energy of the scene's models minus the work of its forces (evaluated at
 time 0) subject to its constraints as equalities, with free weights bounded below by the
 minimum weight (NLopt). The scene file is the format of `dnurbs run` (docs/scene-format.md);
 its optional "design" section sets the algorithm and tolerances, the dynamics keys are ignored.

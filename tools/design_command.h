@@ -1,5 +1,5 @@
 #pragma once
-// `dnurbs design`: the static, energy-minimising shape of a scene's models under its forces and
+// `dnurbs design`: the static, energy-minimizing shape of a scene's models under its forces and
 // constraints (design/energy_minimization.h), written as shape files and an OBJ mesh.
 
 #include <ostream>

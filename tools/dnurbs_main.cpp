@@ -26,7 +26,7 @@ commands:
   export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
   fit superquadric|surface POINTS  fit a superquadric or a D-NURBS surface to points, as JSON
-  design SCENE.json [--out DIR]    energy-minimising static shape under forces and constraints
+  design SCENE.json [--out DIR]    energy-minimizing static shape under forces and constraints
 
 Run `dnurbs COMMAND --help` for a command's options.
 exit codes: 0 ok, 1 bad input or failed processing, 2 bad command line

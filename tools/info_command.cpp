@@ -20,7 +20,7 @@ Describes a scene file (default: the built-in demo of dnurbs run) without runnin
 models with their coordinates, velocities, fixed and active coordinates, which matrices are
 constant (assembled and factored once) and which are re-assembled every step, the non-zeros of
 M + D + K and of its LDL^T factor over the active coordinates, the work of one solve (factor
-entries touched: 2 nnz(L) per right-hand side, plus the factorisation when the matrices change),
+entries touched: 2 nnz(L) per right-hand side, plus the factorization when the matrices change),
 what each automatic choice (fixed weights, rigid or global superquadric parts, deformation
 regions) saves against the naive path, the forces, constraints, integrator and run length, and
 the scene's state hash (checkpoints carry it).
@@ -124,7 +124,7 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
   // Each model's block is factored on its own: constant blocks once, the others every solve
   out << "estimated cost per step: " << (all_constant ? 1 : 1 + integrator.newton_iterations)
       << " solve(s) touching " << solve_total << " factor entries each"
-      << (all_constant ? " (after one factorisation at the first step)" : "")
+      << (all_constant ? " (after one factorization at the first step)" : "")
       << "; the naive paths would touch " << naive_solve_total << " ("
       << ratio(naive_solve_total / solve_total) << "x)";
   if (simulation.constraints().row_count() > 0) {

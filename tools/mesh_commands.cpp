@@ -9,10 +9,10 @@
 #include <system_error>
 #include <variant>
 
+#include "core/error.h"
 #include "io/mesh_export.h"
 #include "io/preview.h"
 #include "io/shape_file.h"
-#include "core/error.h"
 #include "surface/adaptive_tessellation.h"
 #include "surface/tessellation.h"
 #include "tools/command_line.h"
@@ -25,7 +25,7 @@ const char* const kExportHelp =
 
 Tessellates the curve or surface of a shape file and writes a triangle mesh. The format follows
 MESH's extension: .obj (default choice; with a .mtl), .stl, .ply, .gltf (with a .bin) or .glb.
-A surface gets N x N cells, or an adaptive mesh (seed 003 section 5: a restricted binary
+A surface gets N x N cells, or an adaptive mesh (Goldenstein et al. 2005, section 5: a restricted binary
 multi-triangulation, crack-free) refined until every triangle is within E of the surface
 (sampled distance) or its vertex normals within DEG degrees; a curve becomes a tube of radius R
 around N segments.

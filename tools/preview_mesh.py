@@ -4,7 +4,7 @@
 Usage: preview_mesh.py MESH.obj OUT.png
 
 Reads only `v`, `vn`, `f` and `o`/`g` lines (faces with more than three corners are fanned into
-triangles; negative indices count from the end). Each object gets its own colour; faces are
+triangles; negative indices count from the end). Each object gets its own color; faces are
 Lambert-shaded from one fixed light (two-sided), seen from a fixed camera that frames the whole
 mesh with equal axis scales. The PNG is written to OUT.png whatever its extension.
 """
@@ -71,7 +71,7 @@ def main(argv):
     el, az = np.radians(elevation + 25.0), np.radians(azimuth - 40.0)
     light = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
 
-    polygons, colours = [], []
+    polygons, colors = [], []
     for index, (_, triangles) in enumerate(objects):
         corners = points[np.asarray(triangles, dtype=int)]  # #F by 3 by 3
         normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
@@ -83,11 +83,11 @@ def main(argv):
         shade = 0.25 + 0.75 * lambert
         rgb = np.clip(base[None, :] * shade[:, None] + 0.08 * lambert[:, None] ** 8, 0.0, 1.0)
         polygons.extend(corners[keep])
-        colours.extend(rgb)
+        colors.extend(rgb)
 
     figure = plt.figure(figsize=(8, 6), dpi=100)
     axes = figure.add_subplot(projection="3d")
-    collection = Poly3DCollection(polygons, facecolors=colours, edgecolors="none",
+    collection = Poly3DCollection(polygons, facecolors=colors, edgecolors="none",
                                   linewidths=0.0, antialiased=False)
     axes.add_collection3d(collection)
     # Frame the shape: its bounding box (padded), equal scales on the three axes

@@ -50,7 +50,7 @@ class FreudenthalGrid {
     return family * vertex_count() + vertex_index(i, j);
   }
   /// The id of the grid edge joining two vertices that differ by a step of one family (in either
-  /// order); the caller guarantees they are neighbours.
+  /// order); the caller guarantees they are neighbors.
   int edge_between(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const;
   /// The two counter-clockwise triangles of cell (i, j), as grid vertex coordinates.
   std::array<std::array<Eigen::Vector2i, 3>, 2> cell_triangles(int i, int j) const;

@@ -38,7 +38,7 @@ struct Image {
 /// [1, kMaxImageSide] or their product exceeds kMaxImagePixels.
 void check_image_size(long long width, long long height, const std::string& what);
 
-/// Reads an 8- or 16-bit PNG (grey, grey+alpha, palette or RGB(A); colour is converted to grey
+/// Reads an 8- or 16-bit PNG (grey, grey+alpha, palette or RGB(A); color is converted to grey
 /// with the Rec. 709 luminance weights by libpng, alpha is dropped). Throws Error naming the
 /// file on any libpng error, a missing file or a size over the limits.
 Image read_png(const std::string& path);

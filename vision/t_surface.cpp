@@ -25,16 +25,16 @@ TetrahedralGrid grid_over_volume(const Volume& volume, const TSurfaceParameters&
   return {Eigen::Vector3d::Zero(), cell_size, cells};
 }
 
-/// The mean over each vertex's mesh neighbours of `values` (#V by 3), neighbours by edges.
-Eigen::MatrixX3d neighbour_mean(const std::vector<std::vector<int>>& neighbours,
-                                const Eigen::MatrixX3d& values) {
+/// The mean over each vertex's mesh neighbors of `values` (#V by 3), neighbors by edges.
+Eigen::MatrixX3d neighbor_mean(const std::vector<std::vector<int>>& neighbors,
+                               const Eigen::MatrixX3d& values) {
   Eigen::MatrixX3d mean = Eigen::MatrixX3d::Zero(values.rows(), 3);
-  for (std::size_t i = 0; i < neighbours.size(); ++i) {
-    for (const int j : neighbours[i]) {
+  for (std::size_t i = 0; i < neighbors.size(); ++i) {
+    for (const int j : neighbors[i]) {
       mean.row(static_cast<Eigen::Index>(i)) += values.row(j);
     }
     mean.row(static_cast<Eigen::Index>(i)) /=
-        static_cast<double>(std::max<std::size_t>(neighbours[i].size(), 1));
+        static_cast<double>(std::max<std::size_t>(neighbors[i].size(), 1));
   }
   return mean;
 }
@@ -85,7 +85,7 @@ double TSurface::intensity(const Eigen::Vector3d& point) const {
 
 Eigen::MatrixX3d TSurface::vertex_forces() const {
   const Eigen::Index n = mesh_.vertices.rows();
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
+  std::vector<std::vector<int>> neighbors(static_cast<std::size_t>(n));
   Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(n, 3);
   for (Eigen::Index f = 0; f < mesh_.triangles.rows(); ++f) {
     const Eigen::Vector3d a = mesh_.vertices.row(mesh_.triangles(f, 0));
@@ -95,13 +95,13 @@ Eigen::MatrixX3d TSurface::vertex_forces() const {
     for (int k = 0; k < 3; ++k) {
       const int v = mesh_.triangles(f, k);
       normals.row(v) += area_normal;
-      // Each edge appears in both of its triangles; the neighbour is recorded from one direction.
-      neighbours[static_cast<std::size_t>(v)].push_back(mesh_.triangles(f, (k + 1) % 3));
+      // Each edge appears in both of its triangles; the neighbor is recorded from one direction.
+      neighbors[static_cast<std::size_t>(v)].push_back(mesh_.triangles(f, (k + 1) % 3));
     }
   }
   // Membrane and thin-plate differences (the umbrella operator and its square).
-  const Eigen::MatrixX3d alpha = mesh_.vertices - neighbour_mean(neighbours, mesh_.vertices);
-  const Eigen::MatrixX3d beta = alpha - neighbour_mean(neighbours, alpha);
+  const Eigen::MatrixX3d alpha = mesh_.vertices - neighbor_mean(neighbors, mesh_.vertices);
+  const Eigen::MatrixX3d beta = alpha - neighbor_mean(neighbors, alpha);
   Eigen::MatrixX3d forces(n, 3);
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d x = mesh_.vertices.row(i).transpose();

@@ -24,7 +24,7 @@ namespace dnurbs {
 /// The explicit step of every mesh vertex, the discrete deformable surface with mu = 0
 /// (Terzopoulos, eq. 1.20 with the umbrella Laplacian as the discrete membrane and thin plate):
 ///   x_i <- x_i + (time_step / damping) (-tension alpha_i - rigidity beta_i + rho_i + f_i)
-/// with alpha_i = x_i - mean of the neighbours x_j, beta_i = alpha_i - mean of the neighbours
+/// with alpha_i = x_i - mean of the neighbors x_j, beta_i = alpha_i - mean of the neighbors
 /// alpha_j, rho_i = inflation F(V(x_i)) n_i (n_i the area-weighted outward vertex normal, F the
 /// inflation_switch), and f_i = -edge_weight grad P(x_i); V is the volume trilinearly
 /// interpolated. Defaults as TopologyAdaptiveParameters except tension 0.2, time_step 0.25 and

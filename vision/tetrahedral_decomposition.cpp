@@ -40,7 +40,7 @@ double edge_function(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const E
 
 /// The top-left rule for the edge a -> b of a counter-clockwise triangle: a point on the edge
 /// belongs to the triangle only if the edge runs downward, or leftward when horizontal; the
-/// neighbour across the edge traverses it the other way and so gets the point exactly once.
+/// neighbor across the edge traverses it the other way and so gets the point exactly once.
 bool owns_edge(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return b.y() < a.y() || (b.y() == a.y() && b.x() < a.x());
 }
@@ -129,7 +129,7 @@ TetrahedralCrossings::TetrahedralCrossings(const TetrahedralGrid& grid, const Tr
       const std::array<Eigen::Vector2d, 3> q{p[0].head<2>(), p[1].head<2>(), p[2].head<2>()};
       const double area = edge_function(q[0], q[1], q[2]);
       if (area == 0.0) {
-        continue;  // seen edge-on: the line grazes it, its neighbours carry the crossing
+        continue;  // seen edge-on: the line grazes it, its neighbors carry the crossing
       }
       const int sign = area > 0.0 ? 1 : -1;
       const Eigen::Vector2d low = q[0].cwiseMin(q[1]).cwiseMin(q[2]);

@@ -44,7 +44,7 @@ class TetrahedralGrid {
   }
   /// The step of an edge family (components 0 or 1).
   static Eigen::Vector3i direction(int family);
-  /// The family of a step between neighbouring vertices (either sign); -1 if it is none.
+  /// The family of a step between neighboring vertices (either sign); -1 if it is none.
   static int family_of(const Eigen::Vector3i& step);
   int edge_id(int family, const Eigen::Vector3i& first) const {
     return family * vertex_count() + vertex_index(first);

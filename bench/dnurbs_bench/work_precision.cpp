@@ -12,9 +12,9 @@
 #include "bench_scenes.h"
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
+#include "core/error.h"
 #include "dynamics/integrators/integrator.h"
 #include "dynamics/integrators/rigid_body_integrator.h"
-#include "core/error.h"
 
 namespace dnurbs::bench {
 
@@ -261,7 +261,7 @@ void spin_family(const BenchOptions& options, WorkPrecisionCsv& csv, BoundChecks
 // --- Baumgarte violation against its closed form ------------------------------------------------
 //
 // A free D-NURBS curve whose point at u = 0.5 is held at a target `offset` away: the violation
-// obeys Cddot + 2 alpha Cdot + alpha^2 C = 0 (seed 001 eq 1.40 with beta = alpha), so
+// obeys Cddot + 2 alpha Cdot + alpha^2 C = 0 (Terzopoulos 2003, eq. 1.40 with beta = alpha), so
 // C(t) = C0 (1 + alpha t) exp(-alpha t); the error is the largest |C - closed form| / C0 over
 // every step of [0, 0.4].
 void baumgarte_family(const BenchOptions& options, WorkPrecisionCsv& csv, BoundChecks& checks) {

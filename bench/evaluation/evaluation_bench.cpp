@@ -127,7 +127,7 @@ struct ThreadCpuClock {
 
 /// Best-of-kRepeats evaluations per second (thread CPU time) over all parameters. The evaluator (a
 /// lambda, called directly so that no std::function dispatch is timed) writes into one reused
-/// result whose sum feeds a checksum, so the work cannot be optimised away.
+/// result whose sum feeds a checksum, so the work cannot be optimized away.
 template <typename Evaluate>
 double evaluations_per_second(const Evaluate& evaluate, const std::vector<double>& us,
                               const std::vector<double>& vs, double& checksum) {

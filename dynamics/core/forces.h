@@ -1,5 +1,5 @@
 #pragma once
-// Applied forces for System::add_force. Every generalized force goes through L^T (seed 001,
+// Applied forces for System::add_force. Every generalized force goes through L^T (Terzopoulos 2003,
 // below eq 1.26: f_q = integral J^T f(u, t) du): a point force f at u gives L(u)^T f, a force
 // density gives integral L^T f. Forces that depend on the state are explicit in the integrators
 // (their derivatives are not in the effective matrix).

@@ -1,5 +1,5 @@
 #pragma once
-// A line of forces (seed 000 figures 10 and 11: "the same force along its upper line" opens a
+// A line of forces (Wu & de Melo, figures 10 and 11: "the same force along its upper line" opens a
 // curtain): one force f(t) applied at each of several material points.
 
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
-// Material parameter functions over the parametric domain (seed 001 eqs 1.25-1.26): mass density
-// mu, damping density gamma and the stiffness weights (w1, w2 of curves; a10, a01, b20, b11,
-// b02 of surfaces), each a constant or a function of the parameters.
+// Material parameter functions over the parametric domain (Terzopoulos 2003, eqs. 1.25-1.26): mass
+// density mu, damping density gamma and the stiffness weights (w1, w2 of curves; a10, a01, b20,
+// b11, b02 of surfaces), each a constant or a function of the parameters.
 
 #include <functional>
 #include <string>

@@ -132,7 +132,7 @@ Force penalty_contact(std::vector<Obstacle> obstacles, std::vector<Eigen::Vector
         const Eigen::Vector3d sliding = velocity - normal_velocity * n;
         const double speed = sliding.norm();
         if (speed > 0.0) {
-          // Coulomb, regularised: full strength above the sliding velocity.
+          // Coulomb, regularized: full strength above the sliding velocity.
           const double scale = std::min(speed / std::max(settings.sliding_velocity, 1e-300), 1.0);
           f -= settings.friction * std::max(normal_force, 0.0) * scale * sliding / speed;
         }

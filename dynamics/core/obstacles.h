@@ -1,5 +1,5 @@
 #pragma once
-// Rigid obstacles for the grid scenes of seed 000 (a table cloth falling on a table, sheets on
+// Rigid obstacles for the grid scenes of Wu & de Melo (a table cloth falling on a table, sheets on
 // the ground): a ground plane, a box (table) and a sphere, met either by penalty forces (an
 // applied Force) or by projection of the contact points after each step, with friction off
 // (coefficient 0) or on (Coulomb).
@@ -46,7 +46,7 @@ struct ContactSettings {
   double stiffness = 1e4;  ///< penalty k: normal force k * depth
   double damping = 0.0;    ///< normal damping c: -c (v . n) while penetrating
   /// Coulomb coefficient (0: friction off). Penalty: |f_t| = friction |f_n| against the sliding
-  /// velocity, regularised below `sliding_velocity`. Projection: the tangential velocity loses
+  /// velocity, regularized below `sliding_velocity`. Projection: the tangential velocity loses
   /// friction times the removed normal velocity (down to zero).
   double friction = 0.0;
   double sliding_velocity = 1e-3;

@@ -1,8 +1,8 @@
 #pragma once
-// Building blocks of D-NURBS assembly by Gauss quadrature (seed 001 eqs 1.25-1.26): Gauss points
-// over the non-empty knot spans of each parametric direction with their B-spline basis values
-// cached once, the rational Jacobian of a point and of its parametric derivatives (eq 1.23 and
-// its surface analogue) evaluated from those cached values at any weights, and the pre-sized
+// Building blocks of D-NURBS assembly by Gauss quadrature (Terzopoulos 2003, eqs. 1.25-1.26): Gauss
+// points over the non-empty knot spans of each parametric direction with their B-spline basis
+// values cached once, the rational Jacobian of a point and of its parametric derivatives (eq 1.23
+// and its surface analogue) evaluated from those cached values at any weights, and the pre-sized
 // symmetric sparsity pattern into which element matrices are scattered.
 //
 // Curves and surfaces share this code: a curve is a tensor product with a trivial v direction
@@ -83,8 +83,8 @@ struct PointBasis {
 void tensor_product_basis(const DirectionBasis& basis_u, const DirectionBasis& basis_v, int count_v,
                           PointBasis& basis);
 
-/// The rational Jacobian at one material point (seed 001 eq 1.23 and its surface analogue) for
-/// quantities alpha = 0..quantity_count(order)-1 (x, x_u, x_v, x_uu, x_uv, x_vv):
+/// The rational Jacobian at one material point (Terzopoulos 2003, eq. 1.23 and its surface
+/// analogue) for quantities alpha = 0..quantity_count(order)-1 (x, x_u, x_v, x_uu, x_uv, x_vv):
 ///   d x^alpha / d P_a = R(alpha, a) I_3,   d x^alpha / d w_a = E[alpha].col(a)
 /// with R_a = w_a N_a / W the rational basis, phi_a = N_a / W, and
 ///   E_a^alpha = D^alpha [phi_a (P_a - x)]   (filled only when weights are coordinates).

@@ -1,6 +1,6 @@
 #pragma once
-// D-NURBS curves (seed 001 eqs 1.21-1.26): a NURBS curve whose control points and, optionally,
-// weights are the generalized coordinates of a Lagrangian system with the snake energy
+// D-NURBS curves (Terzopoulos 2003, eqs. 1.21-1.26): a NURBS curve whose control points and,
+// optionally, weights are the generalized coordinates of a Lagrangian system with the snake energy
 // (tension w1, rigidity w2) as its elastic potential.
 
 #include <memory>
@@ -20,8 +20,9 @@ struct DNurbsCurveMaterial {
 
 /// A D-NURBS curve as a Model. Coordinates: q = [P_0, P_1, ...] (3 n, fixed weights) or
 /// q = [P_0, w_0, P_1, w_1, ...] (4 n, free weights). Matrices are 3n by 3n or 4n by 4n:
-///   M = integral mu J^T J du,   D = integral gamma J^T J du             (seed 001 eq 1.25)
-///   K = integral w1 J_u^T J_u + w2 J_uu^T J_uu du                        (seed 001 eq 1.26)
+///   M = integral mu J^T J du,   D = integral gamma J^T J du             (Terzopoulos 2003,
+///   eq. 1.25) K = integral w1 J_u^T J_u + w2 J_uu^T J_uu du                        (Terzopoulos
+///   2003, eq. 1.26)
 /// Material parameters are u = (u, 0).
 class DNurbsCurve : public DNurbsModel {
  public:

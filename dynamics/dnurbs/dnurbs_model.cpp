@@ -28,7 +28,8 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
   if (knots_v != nullptr) {
     knots_v_.push_back(*knots_v);
   }
-  // Quadrature tables of both directions (seed 001 eq 1.25: Gauss sums over non-empty spans)
+  // Quadrature tables of both directions (Terzopoulos 2003, eq. 1.25: Gauss sums over non-empty
+  // spans)
   const int points_u =
       settings.quadrature_points > 0 ? settings.quadrature_points : knots_u.degree() + 1;
   table_u_ = direction_quadrature(knots_u, points_u);

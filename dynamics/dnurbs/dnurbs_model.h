@@ -1,5 +1,5 @@
 #pragma once
-// The D-NURBS model shared by curves and surfaces (seed 001 eqs 1.21-1.27): generalized
+// The D-NURBS model shared by curves and surfaces (Terzopoulos 2003, eqs. 1.21-1.27): generalized
 // coordinates are the control points and, when freed, the weights; M, D and K are Gauss
 // quadrature sums over the non-empty knot spans (span products for surfaces) of J^T J terms.
 //
@@ -54,7 +54,7 @@ struct DNurbsSettings {
 ///
 /// Material: `mass_density` mu and `damping_density` gamma per unit parametric measure, and the
 /// stiffness coefficients k_alpha of the quantities alpha = 1..5 (x_u, x_v, x_uu, x_uv, x_vv):
-///   K = integral sum_alpha k_alpha J_alpha^T J_alpha     (seed 001 eqs 1.26 and 1.20).
+///   K = integral sum_alpha k_alpha J_alpha^T J_alpha     (Terzopoulos 2003, eqs. 1.26 and 1.20).
 class DNurbsModel : public Model {
  public:
   int coordinate_count() const override { return control_point_count_ * per_control_point_; }
@@ -128,8 +128,8 @@ class DNurbsModel : public Model {
   void build_pattern();
   void build_coordinates(const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights,
                          const DNurbsSettings& settings);
-  // The quadrature loop of every integral (seed 001 eq 1.25): at each quadrature point of each
-  // element, the basis and the rational Jacobian of derivative order `order` (with the weight
+  // The quadrature loop of every integral (Terzopoulos 2003, eq. 1.25): at each quadrature point of
+  // each element, the basis and the rational Jacobian of derivative order `order` (with the weight
   // columns when `weight_columns`) at the control net, then
   //   point(element, point, weight (quadrature weight times span lengths), material values,
   //         basis, jacobian),

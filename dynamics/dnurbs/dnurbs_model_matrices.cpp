@@ -67,7 +67,7 @@ void DNurbsModel::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) c
 }
 
 void DNurbsModel::assemble_scalar(ModelMatrices& scalar) const {
-  // seed 001 eqs 1.25-1.26 with fixed weights: S_M = integral mu R_a R_b,
+  // Terzopoulos 2003, eqs. 1.25-1.26 with fixed weights: S_M = integral mu R_a R_b,
   // S_D = integral gamma R_a R_b, S_K = integral sum_alpha k_alpha R_a^alpha R_b^alpha.
   const int local = pattern_.local_count;
   const auto local_size = static_cast<size_t>(local * local);
@@ -80,8 +80,8 @@ void DNurbsModel::assemble_scalar(ModelMatrices& scalar) const {
       has_damping_ ? pattern_.scalar : SparseMatrix(pattern_.node_count, pattern_.node_count);
   for_each_quadrature_point(
       control_net(initial_coordinates_), stiffness_order(), false,
-      [&](int /*element*/, int /*point*/, double weight, const double* m, const PointBasis& /*basis*/,
-          const RationalJacobian& jacobian) {
+      [&](int /*element*/, int /*point*/, double weight, const double* m,
+          const PointBasis& /*basis*/, const RationalJacobian& jacobian) {
         const auto& R = jacobian.rational;
         for (int a = 0; a < local; ++a) {
           for (int b = 0; b < local; ++b) {
@@ -128,7 +128,7 @@ void DNurbsModel::reset_block_matrix(SparseMatrix& matrix, bool used) const {
 }
 
 void DNurbsModel::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const {
-  // seed 001 eqs 1.25-1.26 with free weights: 4 x 4 blocks per control point pair,
+  // Terzopoulos 2003, eqs. 1.25-1.26 with free weights: 4 x 4 blocks per control point pair,
   // [[R_a R_b I_3, R_a E_b], [E_a^T R_b, E_a . E_b]] for each quantity.
   const int local = pattern_.local_count;
   const int block_local = 4 * local;
@@ -141,8 +141,8 @@ void DNurbsModel::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const
   reset_block_matrix(matrices.stiffness, true);
   for_each_quadrature_point(
       control_net(q), stiffness_order(), true,
-      [&](int /*element*/, int /*point*/, double weight, const double* m, const PointBasis& /*basis*/,
-          const RationalJacobian& jacobian) {
+      [&](int /*element*/, int /*point*/, double weight, const double* m,
+          const PointBasis& /*basis*/, const RationalJacobian& jacobian) {
         std::array<double, kQuantityCount> coefficient{};
         coefficient[0] = weight * m[0];
         add_free_terms(jacobian, coefficient, local, mass);
@@ -159,8 +159,9 @@ void DNurbsModel::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const
       },
       [&](int element) {
         // Scatter: local pair (a, b) -> scalar entry s -> the 4 x 4 block of the full pattern.
-        const int* to_value = &pattern_.local_to_value[static_cast<size_t>(element) *
-                                                        static_cast<size_t>(local * local)];
+        const int* to_value =
+            &pattern_
+                 .local_to_value[static_cast<size_t>(element) * static_cast<size_t>(local * local)];
         const int* nodes = &pattern_.element_nodes[static_cast<size_t>(element * local)];
         for (int a = 0; a < local; ++a) {
           for (int b = 0; b < local; ++b) {
@@ -226,8 +227,8 @@ double DNurbsModel::potential_energy(ConstVectorRef q) const {
   double energy = 0.0;
   for_each_quadrature_point(
       control_net(q), order, false,
-      [&](int /*element*/, int /*point*/, double weight, const double* m, const PointBasis& /*basis*/,
-          const RationalJacobian& jacobian) {
+      [&](int /*element*/, int /*point*/, double weight, const double* m,
+          const PointBasis& /*basis*/, const RationalJacobian& jacobian) {
         double density = 0.0;
         for (int alpha = 1; alpha < kQuantityCount; ++alpha) {
           if (has_stiffness_[static_cast<size_t>(alpha)]) {
@@ -275,7 +276,7 @@ void DNurbsModel::add_inertial_force(ConstVectorRef q, ConstVectorRef qd, Vector
 
 void DNurbsModel::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                                         VectorRef force) const {
-  // f_q = integral J^T f(u) du (seed 001, below eq 1.26) by the model's Gauss rule.
+  // f_q = integral J^T f(u) du (Terzopoulos 2003, below eq 1.26) by the model's Gauss rule.
   const bool free = mode_ == WeightMode::kFree;
   MaterialSample sample;
   for_each_quadrature_point(

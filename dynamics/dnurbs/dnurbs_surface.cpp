@@ -10,7 +10,7 @@ namespace {
 std::array<MaterialFunction, kQuantityCount> surface_stiffness(
     const DNurbsSurfaceMaterial& material) {
   // Quantity numbering of quadrature_assembly.h: 1 x_u, 2 x_v, 3 x_uu, 4 x_uv, 5 x_vv; the
-  // mixed term enters seed 001 eq 1.20 with the factor 2.
+  // mixed term enters Terzopoulos 2003, eq. 1.20 with the factor 2.
   std::array<MaterialFunction, kQuantityCount> stiffness;
   stiffness[1] = material.a10;
   stiffness[2] = material.a01;

@@ -1,7 +1,7 @@
 #pragma once
-// Tensor-product D-NURBS surfaces (seed 001 eq 1.27): control points and, optionally, weights
-// are generalized coordinates; the elastic potential is the thin plate under tension (seed 001
-// eq 1.20).
+// Tensor-product D-NURBS surfaces (Terzopoulos 2003, eq. 1.27): control points and, optionally,
+// weights are generalized coordinates; the elastic potential is the thin plate under tension
+// (Terzopoulos 2003 eq 1.20).
 
 #include <memory>
 

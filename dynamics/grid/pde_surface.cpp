@@ -54,7 +54,7 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
 }
 
 void PdeSurface::choose_active_nodes(const std::vector<DeformationRegion>& regions) {
-  // Deformation regions (seed 002 section 5) -> index boxes; active = strictly inside a box.
+  // Deformation regions (Romero 2005, section 5) -> index boxes; active = strictly inside a box.
   const int nu = grid_.nu();
   const int nv = grid_.nv();
   const int n = grid_.node_count();
@@ -112,7 +112,7 @@ void PdeSurface::build_matrices() {
                                  : Eigen::RowVector3d::Zero();
   }
 
-  // seed 002 eq 8 by central differences, times the node area h^2.
+  // Romero 2005, eq. 8 by central differences, times the node area h^2.
   const double h = grid_.spacing();
   const double area = h * h;
   const double h4 = h * h * h * h;

@@ -1,14 +1,14 @@
 #pragma once
-// The dynamic PDE surface (seed 002 eq 8, after You et al.):
+// The dynamic PDE surface (Romero 2005, eq. 8, after You et al.):
 //
 //   b d4r/du4 + c d4r/du2dv2 + d d4r/dv4 + rho d2r/dt2 + gamma dr/dt = f
 //
 // on a regular (u, v) grid with spacing h, applied to the displacement r - r0 from the rest mesh
-// (so any rest mesh is at rest without force, seed 002 section 4.2), discretised with central
-// differences (seed 002 section 4.3) and multiplied by the node area h^2, so M = rho h^2 I,
+// (so any rest mesh is at rest without force, Romero 2005, section 4.2), discretized with central
+// differences (Romero 2005, section 4.3) and multiplied by the node area h^2, so M = rho h^2 I,
 // D = gamma h^2 I, K = h^2 (b D_uuuu + c D_uuvv + d D_vvvv) and a point force acts on its node.
 //
-// Deformation regions (seed 002 section 5): around each force centre the nodes closer than the
+// Deformation regions (Romero 2005, section 5): around each force centre the nodes closer than the
 // deformation radius (at rest) define a (u, v) index box; nodes strictly inside a box are
 // simulated, the box border is the boundary (held at rest) and everything outside is fixed and
 // costs nothing: the model's coordinates are only the active nodes. Several regions make the
@@ -18,29 +18,29 @@
 // beyond it is r(-1) = r(1) - 2 h s n0 (central difference), so that the inward derivative of the
 // displacement at the boundary is s n0, n0 the rest normal of the boundary node and s the
 // boundary tangent tangent_u0 (boundary at smaller u), tangent_u1 (larger u), tangent_v0,
-// tangent_v1. Non-zero tangents deform the surface without force (seed 002 figure 9); the internal force is affine,
-// f_int = -K (q - r0) + t. M, D and K are constant, so the integrators factor once; the model
-// does not claim the S (x) I_3 layout (kronecker_block_size() = 0) because the integrators'
-// Kronecker path assumes f_int = -K q.
+// tangent_v1. Non-zero tangents deform the surface without force (Romero 2005, figure 9); the
+// internal force is affine, f_int = -K (q - r0) + t. M, D and K are constant, so the integrators
+// factor once; the model does not claim the S (x) I_3 layout (kronecker_block_size() = 0) because
+// the integrators' Kronecker path assumes f_int = -K q.
 
 #include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "dynamics/integrators/integrator.h"
 #include "dynamics/core/model.h"
 #include "dynamics/core/system.h"
+#include "dynamics/integrators/integrator.h"
 #include "surface/grid.h"
 
 namespace dnurbs {
 
-/// Coefficients of seed 002 eq 8 (constants: the tool's isotropic materials).
+/// Coefficients of Romero 2005, eq. 8 (constants: the tool's isotropic materials).
 struct PdeSurfaceMaterial {
-  double b = 1.0;        ///< d4/du4 coefficient (>= 0)
-  double c = 2.0;        ///< d4/du2dv2 coefficient (>= 0; b = d = 1, c = 2 is the biharmonic)
-  double d = 1.0;        ///< d4/dv4 coefficient (>= 0)
-  double mass_density = 1.0;     ///< rho (> 0), mass rho h^2 per node
+  double b = 1.0;             ///< d4/du4 coefficient (>= 0)
+  double c = 2.0;             ///< d4/du2dv2 coefficient (>= 0; b = d = 1, c = 2 is the biharmonic)
+  double d = 1.0;             ///< d4/dv4 coefficient (>= 0)
+  double mass_density = 1.0;  ///< rho (> 0), mass rho h^2 per node
   double damping_density = 0.0;  ///< gamma (>= 0), damping gamma h^2 per node
   /// Boundary tangents (finite): the inward slope along the rest normal at the boundary at
   /// smaller u (tangent_u0), larger u (tangent_u1), smaller v and larger v (scene keys su0, su1,
@@ -63,7 +63,7 @@ class PdeSurface : public Model {
  public:
   /// Throws Error naming the value for a grid under 3 by 3 nodes, a non-finite rest position, a
   /// negative or non-finite coefficient, rho <= 0, a radius <= 0 or a region without an interior
-  /// node (seed 002: the region must be at least 3 by 3 nodes).
+  /// node (Romero 2005: the region must be at least 3 by 3 nodes).
   PdeSurface(const Grid& grid, const NodePositions& rest, const PdeSurfaceMaterial& material = {},
              const std::vector<DeformationRegion>& regions = {});
 
@@ -78,7 +78,7 @@ class PdeSurface : public Model {
   /// Every grid node's position at q (#nodes by 3): active from q, fixed at rest.
   NodePositions positions(ConstVectorRef q) const;
   /// The active slots whose rest position is within `radius` of `centre` (the force region of
-  /// seed 002): pass them to control_point_force (dynamics/core/forces.h).
+  /// Romero 2005): pass them to control_point_force (dynamics/core/forces.h).
   std::vector<int> nodes_within(const Eigen::Vector3d& centre, double radius) const;
   /// The constant force t of the boundary tangents (3 per active node).
   const Eigen::VectorXd& tangent_force() const { return tangent_force_; }
@@ -122,7 +122,7 @@ class PdeSurface : public Model {
   ModelMatrices matrices_;
 };
 
-/// Sub-steps to an output frame rate (seed 002 section 4.3: the solver runs until the frame's
+/// Sub-steps to an output frame rate (Romero 2005, section 4.3: the solver runs until the frame's
 /// 1/frame_rate has elapsed): ceil(1 / (frame_rate max_dt)) equal steps of at most max_dt.
 /// Returns the number of steps. Throws Error naming max_dt or frame_rate if not positive.
 int advance_frame(Integrator& integrator, System& system, double max_dt, double frame_rate = 24.0);

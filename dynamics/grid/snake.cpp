@@ -65,14 +65,14 @@ Snake::Snake(const NodeChain& chain, const NodePositions& initial, const SnakeMa
   const auto at = [&](const Eigen::VectorXd& w, int i) { return w[((i % n) + n) % n]; };
   std::vector<Eigen::Triplet<double>> triplets;
   for (int i = 0; i < n; ++i) {
-    // seed 001 eqs 1.9-1.11, indices modulo N.
+    // Terzopoulos 2003, eqs. 1.9-1.11, indices modulo N.
     const double a =
         (at(w1, i - 1) + at(w1, i)) / h2 + (at(w2, i - 1) + 4.0 * at(w2, i) + at(w2, i + 1)) / h4;
     const double b = -at(w1, i) / h2 - 2.0 * (at(w2, i) + at(w2, i + 1)) / h4;
     const double c = at(w2, i + 1) / h4;
     triplets.emplace_back(i, i, a);
-    const int i1 = chain.neighbour(i, 1);
-    const int i2 = chain.neighbour(i, 2);
+    const int i1 = chain.neighbor(i, 1);
+    const int i2 = chain.neighbor(i, 2);
     if (i1 >= 0 && b != 0.0) {
       triplets.emplace_back(i, i1, b);
       triplets.emplace_back(i1, i, b);
@@ -143,8 +143,8 @@ void Snake::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
   for (int i = 0; i < n; ++i) {
     sample.parameter = Eigen::Vector2d(chain_.parameter(i), 0.0);
     sample.position = q.segment<3>(3 * i);
-    const int next = chain_.neighbour(i, 1) >= 0 ? chain_.neighbour(i, 1) : i;
-    const int previous = chain_.neighbour(i, -1) >= 0 ? chain_.neighbour(i, -1) : i;
+    const int next = chain_.neighbor(i, 1) >= 0 ? chain_.neighbor(i, 1) : i;
+    const int previous = chain_.neighbor(i, -1) >= 0 ? chain_.neighbor(i, -1) : i;
     sample.tangent_u = (q.segment<3>(3 * next) - q.segment<3>(3 * previous)) /
                        ((next - previous == 0 ? 1 : 2) * chain_.spacing());
     force.segment<3>(3 * i) += density(sample);
@@ -180,7 +180,7 @@ Force potential_force(Potential potential, double gradient_step) {
       const Eigen::Vector2d x = q.segment<2>(offset);
       const Eigen::Vector2d ex(gradient_step, 0.0);
       const Eigen::Vector2d ey(0.0, gradient_step);
-      // seed 001 eq 1.5: the external force -grad P(v).
+      // Terzopoulos 2003, eq. 1.5: the external force -grad P(v).
       generalized[offset] -= (potential(x + ex) - potential(x - ex)) / (2.0 * gradient_step);
       generalized[offset + 1] -= (potential(x + ey) - potential(x - ey)) / (2.0 * gradient_step);
     }

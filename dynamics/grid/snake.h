@@ -1,6 +1,6 @@
 #pragma once
-// Snakes (seed 001 eqs 1.2-1.13): a chain of N nodes u_i = v(i h), open or closed, with tension
-// w1 and rigidity w2, the finite-difference stiffness of eqs 1.8-1.11
+// Snakes (Terzopoulos 2003, eqs. 1.2-1.13): a chain of N nodes u_i = v(i h), open or closed, with
+// tension w1 and rigidity w2, the finite-difference stiffness of eqs 1.8-1.11
 //
 //   a_i = (w1_{i-1} + w1_i)/h^2 + (w2_{i-1} + 4 w2_i + w2_{i+1})/h^4      (eq 1.9, diagonal)
 //   b_i = -w1_i/h^2 - 2 (w2_i + w2_{i+1})/h^4                            (eq 1.10, (i, i+1))
@@ -14,8 +14,8 @@
 //
 // The coordinates are 3 per node (x, y, z) so that snakes share the System with surfaces; a
 // planar snake keeps z = 0 under planar forces. Matrices are constant and S (x) I_3: the central
-// integrator (dynamics/integrators/integrator.h) is the semi-implicit step of eq 1.13 with one LDL^T
-// factorization reused for every step.
+// integrator (dynamics/integrators/integrator.h) is the semi-implicit step of eq 1.13 with one
+// LDL^T factorization reused for every step.
 
 #include <functional>
 #include <memory>
@@ -40,7 +40,7 @@ struct SnakeMaterial {
 };
 
 /// A snake as a Model. q = [u_0, u_1, ...] (3 per node); material points s = u.x() in [0, 1]
-/// interpolate neighbouring nodes linearly.
+/// interpolate neighboring nodes linearly.
 class Snake : public Model {
  public:
   /// `initial` is #nodes by 3. Throws Error naming the value for a non-finite position, a
@@ -81,12 +81,12 @@ class Snake : public Model {
 /// A scalar potential P(x, y) on the image plane.
 using Potential = std::function<double(const Eigen::Vector2d&)>;
 
-/// The external force of seed 001 eq 1.5: -grad P at every node's (x, y) (z force 0), the
+/// The external force of Terzopoulos 2003, eq. 1.5: -grad P at every node's (x, y) (z force 0), the
 /// gradient by central differences of the given step. Acts on models with control points
 /// (nodes): snakes, grid surfaces. Throws Error if the step is not positive and finite.
 Force potential_force(Potential potential, double gradient_step = 1e-6);
 
-/// The image potential of seed 001 (below eq 1.3): P = -c |grad(G_sigma * I)|, the image
+/// The image potential of Terzopoulos 2003 (below eq 1.3): P = -c |grad(G_sigma * I)|, the image
 /// convolved with a Gaussian of width sigma (pixels), its gradient by central differences,
 /// bilinearly interpolated; x is the column and y the row (pixel units), clamped to the image.
 /// Throws Error for an image under 2 by 2 pixels, a non-finite pixel, sigma < 0 or c not finite.

@@ -88,7 +88,7 @@ TerzopoulosSurface::Geometry TerzopoulosSurface::geometry(
     g.normal.row(k) = length > 0.0 ? Eigen::RowVector3d((cross / length).transpose())
                                    : Eigen::RowVector3d::Zero();
   }
-  // seed 000 eq 3: G_ij = r_i . r_j; eq 6: B_ij = n . r_ij.
+  // Wu & de Melo, eq. 3: G_ij = r_i . r_j; eq 6: B_ij = n . r_ij.
   g.metric.resize(n, 3);
   g.metric.col(0) = dots(g.forward[0], g.forward[0]);
   g.metric.col(1) = dots(g.forward[0], g.forward[1]);
@@ -173,7 +173,7 @@ SurfaceTensors TerzopoulosSurface::tensors(ConstVectorRef q) const {
 
 TerzopoulosSurface::ChristoffelCoefficients TerzopoulosSurface::christoffel_coefficients(
     const Geometry& g) const {
-  // Coefficients of the state they are computed at (the "previous state k-1" of seed 000,
+  // Coefficients of the state they are computed at (the "previous state k-1" of Wu & de Melo,
   // section 4): metric of the central tangents, its inverse (eq 13), Christoffel symbols
   // (eq 15) and Weingarten coefficients d_ki (eq 8, n_i = sum_k d_ki r_k).
   const int n = grid_.node_count();
@@ -265,7 +265,7 @@ SparseMatrix TerzopoulosSurface::linearized_stiffness(ConstVectorRef q) const {
   const std::array<const SparseMatrix*, 2> first{&operators_.d1, &operators_.d2};
   const std::array<const SparseMatrix*, 3> second{&operators_.d11, &operators_.d12,
                                                   &operators_.d22};
-  // seed 000 eq 20: alpha_ij = eta_ij (G_ij - G0_ij), beta_ij = xi_ij (B_ij - B0_ij).
+  // Wu & de Melo, eq. 20: alpha_ij = eta_ij (G_ij - G0_ij), beta_ij = xi_ij (B_ij - B0_ij).
   const Eigen::MatrixX3d alpha = eta_.cwiseProduct(g.metric - rest_metric_);
   const Eigen::MatrixX3d beta = xi_.cwiseProduct(g.curvature - rest_curvature_);
 
@@ -284,7 +284,7 @@ SparseMatrix TerzopoulosSurface::linearized_stiffness(ConstVectorRef q) const {
 
   const bool bending = beta.cwiseAbs().maxCoeff() > 0.0;
   if (bending && settings_.normal == NormalApproximation::kClassic) {
-    // seed 000 eq 21: d^2/da_i da_j (beta_ij r_ij) = (D+_ij)^T beta_ij D+_ij r.
+    // Wu & de Melo, eq. 21: d^2/da_i da_j (beta_ij r_ij) = (D+_ij)^T beta_ij D+_ij r.
     for (int i = 0; i < 2; ++i) {
       for (int j = 0; j < 2; ++j) {
         const int c = packed_column(i, j);

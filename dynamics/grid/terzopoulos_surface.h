@@ -1,5 +1,5 @@
 #pragma once
-// The grid-based Terzopoulos elastic surface (seed 000, eqs 16-26): nodes r_ij of a regular
+// The grid-based Terzopoulos elastic surface (Wu & de Melo, eqs 16-26): nodes r_ij of a regular
 // (u, v) grid are the coordinates, mass mu h^2 and damping gamma h^2 per node (M, D diagonal),
 // and the internal force comes from the metric tensor G and the curvature tensor B,
 //
@@ -7,7 +7,7 @@
 //   force  (eq 19)   e = sum_ij -d/da_i (alpha_ij dr/da_j) + d^2/da_i da_j (beta_ij n)
 //                    alpha_ij = eta_ij (G_ij - G0_ij),  beta_ij = xi_ij (B_ij - B0_ij)  (eq 20)
 //
-// discretised with the standard differences of Terzopoulos et al. (surface/grid_difference_
+// discretized with the standard differences of Terzopoulos et al. (surface/grid_difference_
 // operators.h): forward differences D+, their adjoints D- = -(D+)^T, so that the node force is
 //
 //   f_int = -h^2 K(r) r,   K(r) = sum_ij (D+_i)^T alpha_ij D+_j + (bending part),
@@ -15,13 +15,13 @@
 // with alpha_ij, beta_ij and the normal coefficients frozen at the state K is built at. Two
 // bending parts (selectable):
 //   classic      n ~ r_ij (eq 21):  sum_ij (D+_ij)^T beta_ij D+_ij                (symmetric)
-//   christoffel  eq 22 discretised as in seed 000 section 4,
+//   christoffel  eq 22 discretized as in Wu & de Melo, section 4,
 //                  D-_ij(beta_ij) n + sum_k D-_j(beta_ij) d_ki D+_k r
 //                                   + D-_i(beta_ij sum_k d_kj D+_k r)
 //                with n = s_ij [D+_ij r - Gamma^1_ij r_1 - Gamma^2_ij r_2] (eqs 23-26), s = 1/B
 //                if |B| > delta, +1 if 0 <= B <= delta, -1 if -delta < B < 0; Gamma (eq 15),
 //                d (Weingarten, eq 8) and B (eq 6) from the state K is built at. Where D+_ij r
-//                is not computable the Gamma terms are dropped too (seed 000, section 4). The
+//                is not computable the Gamma terms are dropped too (Wu & de Melo, section 4). The
 //                r_1, r_2 in n are the central tangents Gamma is computed with (the seed writes
 //                D+_k), so that at the coefficients' own state n is exactly the unit normal
 //                where |B| > delta. K is not symmetric.
@@ -43,7 +43,7 @@ namespace dnurbs {
 
 /// How the normal in d^2(beta_ij n)/da_i da_j is approximated.
 enum class NormalApproximation {
-  kClassic,      ///< second derivatives r_ij (seed 000 eq 21)
+  kClassic,      ///< second derivatives r_ij (Wu & de Melo, eq. 21)
   kChristoffel,  ///< Gauss formula with the previous state's Christoffel symbols (eqs 22-26)
 };
 
@@ -58,7 +58,7 @@ struct TerzopoulosMaterial {
 
 struct TerzopoulosSettings {
   NormalApproximation normal = NormalApproximation::kClassic;
-  /// Threshold of eqs 24-26 (> 0); seed 000: 0.5 suits grids whose cells are almost planar.
+  /// Threshold of eqs 24-26 (> 0); Wu & de Melo: 0.5 suits grids whose cells are almost planar.
   double delta = 0.5;
 };
 
@@ -107,7 +107,7 @@ class TerzopoulosSurface : public Model {
   /// christoffel approximation.
   SparseMatrix linearized_stiffness(ConstVectorRef q) const;
 
-  /// The normal estimates of seed 000 eqs 24-26 at coordinates q with the coefficients (B,
+  /// The normal estimates of Wu & de Melo, eqs. 24-26 at coordinates q with the coefficients (B,
   /// Christoffel symbols) of the state `previous`, for the pairs 11, 12, 22 (each #nodes by 3).
   /// Where |B_ij| > delta and q = previous this is the unit normal (eq 23); below delta it is
   /// +-B_ij n (eqs 25-26).

@@ -1,5 +1,5 @@
 #pragma once
-// Time integration of M qdd + D qd - f_int(q) = f + g (seed 001 eq 1.24; DESIGN.md, "Time
+// Time integration of M qdd + D qd - f_int(q) = f + g (Terzopoulos 2003, eq. 1.24; DESIGN.md, "Time
 // integration"). Every scheme is written for one unknown, the acceleration a of the step:
 //
 //   q_new = q_pred "+" position_coefficient a      (Model::advance_coordinates)
@@ -7,7 +7,7 @@
 //   A a = b,   A = M + velocity_coefficient D + position_coefficient K_T,
 //   b = f + g + f_int(q_pred) - D v_pred           (the residual at a = 0)
 //
-//   central         seed 001 eq 1.13, (M/dt^2 + D/(2dt) + K) q(t+dt) = (2M/dt^2) q(t)
+//   central         Terzopoulos 2003, eq. 1.13, (M/dt^2 + D/(2dt) + K) q(t+dt) = (2M/dt^2) q(t)
 //                   - (M/dt^2 - D/(2dt)) q(t-dt) + f(t): with v = (q(t) - q(t-dt))/dt stored as
 //                   the velocity, q_pred = q + dt v, position_coefficient dt^2, velocity
 //                   coefficient dt/2, forces at time t and state (q, v).
@@ -74,7 +74,7 @@ struct StepSystem {
   const Eigen::VectorXd* predicted_velocities = nullptr;   ///< v of the current iterate
   double state_time = 0.0;                                 ///< time of the iterate's state (t + dt)
   const Eigen::VectorXd* acceleration = nullptr;           ///< acceleration a of the iterate so far
-  /// Changes whenever `solve` uses a new factorisation (of A or, for the initial acceleration,
+  /// Changes whenever `solve` uses a new factorization (of A or, for the initial acceleration,
   /// of M), so that a hook may keep work done with the previous one.
   std::uint64_t factorization_serial = 0;
   const std::vector<int>* fixed_coordinates = nullptr;

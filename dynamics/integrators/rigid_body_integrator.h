@@ -2,7 +2,7 @@
 // A conserving time step for free rigid superquadrics (issue 4: "a scheme you show conserves
 // them better" than Newmark for free spin). The Lie-group implicit midpoint rule of the
 // Newton-Euler equations about the centre of mass (Euler's equations in the body frame,
-// seed 001 eq 1.38 with M from the rigid mass properties and g = -w x (I w)):
+// Terzopoulos 2003, eq. 1.38 with M from the rigid mass properties and g = -w x (I w)):
 //
 //   m (v' - v) / h             = f - alpha m v_m                     v_m = (v + v') / 2
 //   x' = x + h v_m                                                   x: centre of mass
@@ -18,7 +18,7 @@
 //     so R' Pi' = R cay(h[w_m]) cay(-h[w_m]) Pi = R Pi;
 //   - the linear momentum m v.
 // It is second order and needs one 3 x 3 Newton solve per body and step (no surface integral,
-// no sparse factorisation). The general Integrator (newmark) remains the scheme for deformable
+// no sparse factorization). The general Integrator (newmark) remains the scheme for deformable
 // models and constraints; this one does not take a solve hook.
 
 #include "dynamics/core/system.h"

@@ -1,6 +1,6 @@
 #pragma once
 // Static equilibrium of a linear system: K q = f on the free coordinates, the fixed ones held at
-// their current values (seed 001 eq 1.24 with qdd = qd = 0 and g = 0).
+// their current values (Terzopoulos 2003, eq. 1.24 with qdd = qd = 0 and g = 0).
 
 #include "dynamics/core/system.h"
 

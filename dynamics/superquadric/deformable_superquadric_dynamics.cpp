@@ -51,7 +51,7 @@ void DeformableSuperquadricModel::assemble_dense_mass(const State& state, Eigen:
     }
     return;
   }
-  // seed 001 eq 1.38: M = integral mu L^T L dA = integral mu (R^T L)^T (R^T L) dA
+  // Terzopoulos 2003, eq. 1.38: M = integral mu L^T L dA = integral mu (R^T L)^T (R^T L) dA
   // (accumulated in fixed-capacity storage: no allocation per point)
   BodyJacobian lb(3, nr);
   DenseBlock block = DenseBlock::Zero(nr, nr);
@@ -108,7 +108,7 @@ void DeformableSuperquadricModel::assemble_matrices(ConstVectorRef q,
     }
   }
 
-  // K is constant; D = alpha M + beta K (seed 001 below eq 1.38).
+  // K is constant; D = alpha M + beta K (Terzopoulos 2003, below eq 1.38).
   matrices.stiffness = stiffness_;
   const double alpha = settings_.damping_alpha;
   const double beta = settings_.damping_beta;
@@ -183,7 +183,7 @@ void DeformableSuperquadricModel::add_inertial_force(ConstVectorRef q, ConstVect
                                                 ? DeformableSuperquadricShape()
                                                 : DeformableSuperquadricShape(state.shape);
   BodyJacobian lb(3, rigid_count_);
-  // seed 001 eq 1.38: g = -integral mu L^T Ldot qd dA = -integral mu (R^T L)^T a_b dA
+  // Terzopoulos 2003, eq. 1.38: g = -integral mu L^T Ldot qd dA = -integral mu (R^T L)^T a_b dA
   for_each_point(state, true, [&](const PointKinematics& pt) {
     Eigen::Vector3d p_dot = pt.jacobian * shape_rate;
     if (pt.fe != nullptr) {
@@ -216,7 +216,7 @@ void DeformableSuperquadricModel::add_distributed_force(ConstVectorRef q,
   const bool rotation = settings_.parts.rotation;
   BodyJacobian lb(3, rigid_count_);
   MaterialSample sample;
-  // f_q = integral L^T f du dv (seed 001 below eq 1.38), f per unit parametric measure.
+  // f_q = integral L^T f du dv (Terzopoulos 2003, below eq 1.38), f per unit parametric measure.
   for_each_point(state, !free_shape_.empty(), [&](const PointKinematics& pt) {
     const ParameterQuadraturePoint& point = points_[static_cast<size_t>(pt.index)];
     sample.parameter = Eigen::Vector2d(point.u, point.v);

@@ -30,7 +30,7 @@ Eigen::Vector3d DeformableSuperquadricModel::position(ConstVectorRef q,
       p += fe.value[a] * Eigen::Map<const Eigen::Vector3d>(state.local + node_offset(fe, a));
     }
   }
-  // seed 001 eq 1.35: x = c + R (s + d)
+  // Terzopoulos 2003, eq. 1.35: x = c + R (s + d)
   return state.centre + state.rotation * p;
 }
 
@@ -50,7 +50,7 @@ SparseMatrix DeformableSuperquadricModel::position_jacobian(ConstVectorRef q,
   BodyJacobian lb(3, rigid_count_);
   body_jacobian(state.rotation, p, e.jacobian, settings_.parts.translation,
                 settings_.parts.rotation, free_shape_, lb);
-  // seed 001 eq 1.36: L = R [R^T, -[p]_x, J, S] = [I, B, R J, R S]
+  // Terzopoulos 2003, eq. 1.36: L = R [R^T, -[p]_x, J, S] = [I, B, R J, R S]
   const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxRigidCount> l = state.rotation * lb;
   SparseMatrix result(3, velocity_count_);
   result.reserve(Eigen::VectorXi::Constant(velocity_count_, 3));

@@ -39,8 +39,8 @@ DeformableSuperquadricModel::DeformableSuperquadricModel(const SuperquadricShape
       mesh_(settings_.mesh_cells_u, settings_.mesh_cells_v) {
   validate(shape, centre, orientation);
   lay_out(shape, centre);
-  // Quadrature tables: seed 001 eq 1.38, M = integral mu L^T L dA with dA = |s_u x s_v| du dv of
-  // the reference shape
+  // Quadrature tables: Terzopoulos 2003, eq. 1.38, M = integral mu L^T L dA with dA = |s_u x s_v|
+  // du dv of the reference shape
   points_ = superquadric_quadrature_points(mesh_, shape, settings_.quadrature_points,
                                            settings_.graded_quadrature);
   build_point_tables(shape);
@@ -59,14 +59,14 @@ void DeformableSuperquadricModel::validate(const SuperquadricShapeParameters& sh
   }
   for (int k = Parameter::kScale; k <= Parameter::kAspect3; ++k) {
     if (!(shape[k] > 0.0)) {
-      throw make_error("deformable superquadric ", superquadric_parameter_name(k), " = ",
-                       shape[k], " must be positive");
+      throw make_error("deformable superquadric ", superquadric_parameter_name(k), " = ", shape[k],
+                       " must be positive");
     }
   }
   for (int k = Parameter::kSquareness1; k <= Parameter::kSquareness2; ++k) {
     if (!(shape[k] >= kMinSquareness && shape[k] <= kMaxSquareness)) {
-      throw make_error("deformable superquadric ", superquadric_parameter_name(k), " = ",
-                       shape[k], " is outside [", kMinSquareness, ", ", kMaxSquareness, "]");
+      throw make_error("deformable superquadric ", superquadric_parameter_name(k), " = ", shape[k],
+                       " is outside [", kMinSquareness, ", ", kMaxSquareness, "]");
     }
   }
   for (int i = 0; i < 3; ++i) {
@@ -180,7 +180,7 @@ void DeformableSuperquadricModel::build_point_tables(const SuperquadricShapePara
 
 void DeformableSuperquadricModel::build_constant_matrices() {
   const int local_count = settings_.parts.local ? mesh_.coordinate_count() : 0;
-  // Local mass M_dd = integral mu S^T S dA = m_ab (x) I3 (constant: R^T R = I), regularised
+  // Local mass M_dd = integral mu S^T S dA = m_ab (x) I3 (constant: R^T R = I), regularized
   if (settings_.parts.local) {
     std::vector<Eigen::Triplet<double>> triplets;
     for (size_t k = 0; k < points_.size(); ++k) {
@@ -248,7 +248,7 @@ void DeformableSuperquadricModel::build_constant_matrices() {
 
 void DeformableSuperquadricModel::build_shape_regularization(
     const SuperquadricShapeParameters& shape) {
-  // Regularisation of the free q_s (constant, from the reference state)
+  // Regularization of the free q_s (constant, from the reference state)
   const auto shape_free = static_cast<int>(free_shape_.size());
   shape_regularization_ = Eigen::VectorXd::Zero(shape_free);
   if (shape_free == 0) {
@@ -257,9 +257,9 @@ void DeformableSuperquadricModel::build_shape_regularization(
   Eigen::MatrixXd mass_rr;
   Eigen::MatrixXd coupling;
   assemble_dense_mass(decode(initial_coordinates_), mass_rr, coupling);
-  const double h = shape[Parameter::kScale] * std::max({shape[Parameter::kAspect1],
-                                                        shape[Parameter::kAspect2],
-                                                        shape[Parameter::kAspect3]});
+  const double h =
+      shape[Parameter::kScale] * std::max({shape[Parameter::kAspect1], shape[Parameter::kAspect2],
+                                           shape[Parameter::kAspect3]});
   for (int i = 0; i < shape_free; ++i) {
     const int row = shape_velocity_offset_ + i;
     shape_regularization_[i] =
@@ -317,7 +317,7 @@ void DeformableSuperquadricModel::advance_coordinates(ConstVectorRef q, ConstVec
     coordinate = velocity = 3;
   }
   if (settings_.parts.rotation) {
-    // R <- R exp([dw]_x): the quaternion product q (x) exp(dw), renormalised.
+    // R <- R exp([dw]_x): the quaternion product q (x) exp(dw), renormalized.
     const auto w = q.segment<4>(quaternion_offset_);
     const Eigen::Quaterniond current(w[0], w[1], w[2], w[3]);
     const Eigen::Quaterniond next =

@@ -1,5 +1,5 @@
 #pragma once
-// The dynamic deformable superquadric (seed 001 eqs 1.28-1.38; DESIGN.md "Deformable
+// The dynamic deformable superquadric (Terzopoulos 2003, eqs. 1.28-1.38; DESIGN.md "Deformable
 // superquadrics"; Terzopoulos & Metaxas 1991):
 //
 //   x = c + R p,  p = s + d,  s = T(e(u; q_s)),  d = S q_d              (eqs 1.28-1.33, 1.35)
@@ -35,10 +35,10 @@
 // singular at both ends use tau^p / (tau^p + (1 - tau)^p)). Measured in tests/superquadric
 // (8 x 8 cells, 16 points per cell and direction, e1 = e2 = e), mass error plain vs graded:
 // 4e-2 vs 5e-14 for e = 0.5, 0.19 vs 1e-9 for e = 0.3, 0.68 vs 1e-2 for e = 0.1, where double
-// precision limits the u parametrisation itself (|cos u| <= 1e-14 is snapped to 0: the inner
+// precision limits the u parametrization itself (|cos u| <= 1e-14 is snapped to 0: the inner
 // ~4 % of a cap's radius).
 //
-// Singular directions of M are regularised: a and (a1, a2, a3) scale the shape redundantly
+// Singular directions of M are regularized: a and (a1, a2, a3) scale the shape redundantly
 // (a J_a = a1 J_a1 + a2 J_a2 + a3 J_a3), the bend offset and frequency have zero Jacobian
 // columns where the bend amplitude b1 is 0, and a uniform d is a translation. Every free
 // deformation coordinate k gets a constant extra inertia regularization * (M_kk + m h^2) (q_s,
@@ -71,7 +71,7 @@ class DeformableSuperquadricModel : public Model {
   /// Builds the model at q_s = `shape` (14-vector), centre c and orientation. Throws Error
   /// naming the value unless a, a1, a2, a3 > 0, e1, e2 in [kMinSquareness, kMaxSquareness],
   /// everything finite, the settings valid, and | |orientation| - 1 | <= 1e-6 (a quaternion
-  /// that close to unit length is normalised; any other is rejected).
+  /// that close to unit length is normalized; any other is rejected).
   explicit DeformableSuperquadricModel(
       const SuperquadricShapeParameters& shape,
       const Eigen::Vector3d& centre = Eigen::Vector3d::Zero(),
@@ -107,10 +107,10 @@ class DeformableSuperquadricModel : public Model {
   /// mu |s_u x s_v|(reference), so gravity(g) gives m g; tangents are x_u, x_v at q.
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
-  /// c += dc, R <- R exp([dw]_x) (quaternion product, renormalised), q_s += dq_s, q_d += dq_d.
+  /// c += dc, R <- R exp([dw]_x) (quaternion product, renormalized), q_s += dq_s, q_d += dq_d.
   void advance_coordinates(ConstVectorRef q, ConstVectorRef dv,
                            Eigen::Ref<Eigen::VectorXd> q_out) const override;
-  /// Renormalises the quaternion; keeps free e1, e2 in [kMinSquareness, kMaxSquareness] and
+  /// Renormalizes the quaternion; keeps free e1, e2 in [kMinSquareness, kMaxSquareness] and
   /// a, a1, a2, a3 >= 1e-3 times their construction value, removing the velocity component that
   /// points further out where a bound is hit (an inelastic stop).
   void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
@@ -144,7 +144,7 @@ class DeformableSuperquadricModel : public Model {
 
   // State decoding -----------------------------------------------------------------------------
   Eigen::Vector3d centre(ConstVectorRef q) const;
-  /// The normalised orientation quaternion.
+  /// The normalized orientation quaternion.
   Eigen::Quaterniond orientation(ConstVectorRef q) const;
   /// All 14 q_s entries (the fixed ones at their construction values).
   SuperquadricShapeParameters shape_parameters(ConstVectorRef q) const;
@@ -174,7 +174,7 @@ class DeformableSuperquadricModel : public Model {
  private:
   // Construction steps: checks, the layout of q and qdot, the per-point tables (masses, FE
   // shape values, the reference shape) with the reference mass properties, the constant parts
-  // of M and K, and the regularisation of the free q_s.
+  // of M and K, and the regularization of the free q_s.
   void validate(const SuperquadricShapeParameters& shape, const Eigen::Vector3d& centre,
                 const Eigen::Quaterniond& orientation);
   void lay_out(const SuperquadricShapeParameters& shape, const Eigen::Vector3d& centre);
@@ -185,7 +185,7 @@ class DeformableSuperquadricModel : public Model {
   template <typename Visitor>
   void for_each_point(const State& state, bool need_jacobian, Visitor&& visit) const;
   /// The dense parts of M at a state: mass_rr (rigid_count_ square: c, w, free q_s) and the
-  /// coupling of those velocities with q_d (rigid_count_ by 3 #nodes), without regularisation.
+  /// coupling of those velocities with q_d (rigid_count_ by 3 #nodes), without regularization.
   void assemble_dense_mass(const State& state, Eigen::MatrixXd& mass_rr,
                            Eigen::MatrixXd& coupling) const;
 
@@ -219,7 +219,7 @@ class DeformableSuperquadricModel : public Model {
 
   // Constant matrix parts.
   Eigen::VectorXd shape_regularization_;  ///< per free q_s entry
-  SparseMatrix local_mass_;               ///< M_dd (x) I3, regularised, constant
+  SparseMatrix local_mass_;               ///< M_dd (x) I3, regularized, constant
   SparseMatrix stiffness_;                ///< K (velocity_count() square)
   SparseMatrix local_stiffness_;          ///< K_d (x) I3 (3 #nodes square), empty unless local
   SparseMatrix mass_pattern_;             ///< the structure of M (values of M_dd filled in)

@@ -14,7 +14,7 @@
 
 namespace dnurbs {
 
-/// Which parts of q = (c, theta, q_s, q_d) are free (seed 001 eq 1.37).
+/// Which parts of q = (c, theta, q_s, q_d) are free (Terzopoulos 2003, eq. 1.37).
 struct DeformableSuperquadricParts {
   bool translation = true;  ///< c (3 coordinates, 3 velocities)
   bool rotation = true;     ///< quaternion (4 coordinates), body angular velocity (3 velocities)

@@ -26,7 +26,6 @@ using ShapeJacobian = Eigen::Matrix<double, 3, kShapeCount>;
 using DenseBlock =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRigidCount, kMaxRigidCount>;
 
-
 /// Offset in q_d of the displacement of the a-th active node.
 inline std::ptrdiff_t node_offset(const FeShapeValues& fe, int a) {
   return 3 * static_cast<std::ptrdiff_t>(fe.node[static_cast<size_t>(a)]);
@@ -43,12 +42,11 @@ struct PointKinematics {
   const FeShapeValues* fe = nullptr;
 };
 
-
-/// The dense block of R^T L at a point (seed 001 eq 1.36 in the body frame):
+/// The dense block of R^T L at a point (Terzopoulos 2003, eq. 1.36 in the body frame):
 /// [R^T (translation), -[p]_x (rotation), J_free (shape)].
 inline void body_jacobian(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& p,
-                   const ShapeJacobian& jacobian, bool translation, bool rotation_on,
-                   const std::vector<int>& free_shape, BodyJacobian& lb) {
+                          const ShapeJacobian& jacobian, bool translation, bool rotation_on,
+                          const std::vector<int>& free_shape, BodyJacobian& lb) {
   int column = 0;
   if (translation) {
     lb.middleCols<3>(column) = rotation.transpose();
@@ -72,7 +70,8 @@ struct DeformableSuperquadricModel::State {
   const double* local = nullptr;  ///< q_d (3 #nodes) or nullptr
 };
 
-// Per-point kinematics (the definition every implementation file of the model shares) ---------------------------------------------------------------------------
+// Per-point kinematics (the definition every implementation file of the model shares)
+// ---------------------------------------------------------------------------
 
 template <typename Visitor>
 void DeformableSuperquadricModel::for_each_point(const State& state, bool need_jacobian,
@@ -100,7 +99,7 @@ void DeformableSuperquadricModel::for_each_point(const State& state, bool need_j
         point.jacobian = e.jacobian;
       }
     }
-    // seed 001 eq 1.32: d = S q_d
+    // Terzopoulos 2003, eq. 1.32: d = S q_d
     if (state.local != nullptr) {
       const FeShapeValues& fe = point_shape_values_[k];
       point.fe = &fe;

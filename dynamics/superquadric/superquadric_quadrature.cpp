@@ -9,7 +9,7 @@
 namespace dnurbs {
 namespace {
 
-/// A 1-D rule on [a, b] graded with exponent p toward the singular ends (seed 001 eq 1.38
+/// A 1-D rule on [a, b] graded with exponent p toward the singular ends (Terzopoulos 2003, eq. 1.38
 /// integrands with the |cos w|^e singularities of the signed powers): x = a + (b - a) g(tau),
 /// g = tau^p (singular at a), 1 - (1 - tau)^p (at b), tau^p / (tau^p + (1 - tau)^p) (both).
 void graded_rule(const GaussLegendreRule& rule, double a, double b, bool singular_a,

@@ -1,16 +1,16 @@
-// Sculpting a D-NURBS surface into a hat (seed 001 eqs 1.24-1.27): a flat bicubic sheet with a
-// clamped border is shaped by forces and springs on its control points and on points of the
+// Sculpting a D-NURBS surface into a hat (Terzopoulos 2003, eqs. 1.24-1.27): a flat bicubic sheet
+// with a clamped border is shaped by forces and springs on its control points and on points of the
 // surface, each with its own time schedule, stepped by Newmark; every frame is written as OBJ.
 // Usage: example_101_sculpting [OUTPUT_DIRECTORY [FRAMES]] (default sculpting/, 60 frames).
 
 #include <algorithm>
 #include <cstdio>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/integrator.h"
 #include "dynamics/core/model_tessellation.h"
 #include "dynamics/core/system.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dynamics/integrators/integrator.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "nurbs/knot_vector.h"

@@ -1,6 +1,6 @@
-// A multibody assembly of superquadrics (seed 001 eqs 1.28-1.40): an arm hangs from a pivot by
-// a ball joint, a spinning wheel turns on a hinge across it, a bob hangs from its end by a ball
-// joint. Released 40 degrees off the vertical under gravity, undamped: the joints hold
+// A multibody assembly of superquadrics (Terzopoulos 2003, eqs. 1.28-1.40): an arm hangs from a
+// pivot by a ball joint, a spinning wheel turns on a hinge across it, a bob hangs from its end by a
+// ball joint. Released 40 degrees off the vertical under gravity, undamped: the joints hold
 // (Baumgarte plus projection) and the total energy is conserved.
 // Usage: example_102_superquadric_assembly [OUTPUT_DIRECTORY [FRAMES]] (default 60 frames).
 
@@ -12,9 +12,9 @@
 
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "dynamics/core/forces.h"
 #include "dynamics/core/model_tessellation.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 

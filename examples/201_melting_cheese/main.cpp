@@ -1,4 +1,4 @@
-// Melting cheese (seed 000 figure 1): a Terzopoulos surface with no resistance to metric
+// Melting cheese (Wu & de Melo, figure 1): a Terzopoulos surface with no resistance to metric
 // variation or curving (eta = xi = 0), its border fixed, under gravity. With no internal force
 // the interior simply falls while the border holds: the deformation is all in the cells next to
 // the fixed nodes. Writes frame_NNN.obj into the directory given as the first argument.
@@ -10,9 +10,9 @@
 #include <string>
 
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

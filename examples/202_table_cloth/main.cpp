@@ -1,5 +1,5 @@
-// A table cloth falling on a table (seed 000 figure 2): eta_ii = 0.001, eta_12 = 0.0006, xi = 0,
-// gravity, a box obstacle met by projection with friction. Prints the deepest penetration a step
+// A table cloth falling on a table (Wu & de Melo, figure 2): eta_ii = 0.001, eta_12 = 0.0006, xi =
+// 0, gravity, a box obstacle met by projection with friction. Prints the deepest penetration a step
 // produced before projection. Writes frame_NNN.obj (cloth and table) into argv[1].
 // Usage: example_202_table_cloth [OUTPUT_DIRECTORY [FRAMES]] (default table_cloth/, 61 frames).
 
@@ -8,9 +8,9 @@
 
 #include "dynamics/core/forces.h"
 #include "dynamics/core/obstacles.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

@@ -1,4 +1,4 @@
-// Cardboard pressed at its centre (seed 000 figure 4): resistance to metric variation and to
+// Cardboard pressed at its centre (Wu & de Melo, figure 4): resistance to metric variation and to
 // curving (eta = 0.01, xi = 1e-8), border clamped, a normal force at the centre
 // (spread over the 3 by 3 central nodes), with both
 // normal approximations side by side (classic at x < 0, christoffel at x > 0). Writes
@@ -10,9 +10,9 @@
 #include <filesystem>
 
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

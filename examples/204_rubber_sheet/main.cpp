@@ -1,5 +1,5 @@
 // A rubber sheet with fixed border under gravity for increasing resistance to metric variation
-// (seed 000 figure 3: eta = 7e-7, 4e-6, 3e-5, 1e-2; xi = 0): the larger eta, the flatter the
+// (Wu & de Melo, figure 3: eta = 7e-7, 4e-6, 3e-5, 1e-2; xi = 0): the larger eta, the flatter the
 // sheet. Writes eta_K.obj (the settled sheet for the K-th eta) into argv[1] and prints the sag.
 // Usage: example_204_rubber_sheet [OUTPUT_DIRECTORY [STEPS]] (default rubber_sheet/, 4000 steps per
 // sheet).
@@ -8,9 +8,9 @@
 #include <filesystem>
 
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

@@ -1,4 +1,4 @@
-// Paper with increasing resistance to curving under a force at its centre (seed 000 figures 5
+// Paper with increasing resistance to curving under a force at its centre (Wu & de Melo, figures 5
 // and 7): the classic normal with figure 5's xi (0, 8e-8, 3.6e-7, 7e-7) and the Christoffel
 // normal with figure 7's xi (0, 5e-6, 3e-5, 1e-4). With the Christoffel normal the paper stays
 // flatter as xi grows. Writes <normal>_K.obj into argv[1] and prints the maximum curvature.
@@ -9,9 +9,9 @@
 #include <filesystem>
 
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

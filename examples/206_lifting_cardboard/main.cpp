@@ -1,4 +1,4 @@
-// Lifting a cardboard by its middle point (seed 000 figure 9): big resistance to stretching
+// Lifting a cardboard by its middle point (Wu & de Melo, figure 9): big resistance to stretching
 // (eta = 1e-2) and curving (xi = 2e-6), Christoffel normal, lying on the ground under gravity; a
 // growing upward force at the middle lifts it. The ground is met by projection with friction.
 // Writes frame_NNN.obj into argv[1].
@@ -10,9 +10,9 @@
 
 #include "dynamics/core/forces.h"
 #include "dynamics/core/obstacles.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

@@ -1,4 +1,4 @@
-// Opening a woollen and a silk curtain (seed 000 figures 10 and 11): eta_ii = 1e-3, eta_12 =
+// Opening a woollen and a silk curtain (Wu & de Melo, figures 10 and 11): eta_ii = 1e-3, eta_12 =
 // 1e-6 and xi = 2e-6 (wool) or 0 (silk), hanging from a rail under gravity; the same force
 // along the upper line draws each curtain toward its fixed first node. The upper nodes (the
 // hooks) slide on the rail and swing across it (their z is fixed). Writes frame_NNN.obj (both
@@ -12,9 +12,9 @@
 
 #include "dynamics/core/forces.h"
 #include "dynamics/core/line_force.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

@@ -1,4 +1,4 @@
-// The dynamic PDE surface (seed 002 eq 8) with two pulsing forces, each simulating only its
+// The dynamic PDE surface (Romero 2005, eq. 8) with two pulsing forces, each simulating only its
 // deformation region (the rest of the grid is fixed and costs nothing), sub-stepped to 24 frames
 // per second. Writes frame_NNN.obj into argv[1].
 // Usage: example_208_pde_surface [OUTPUT_DIRECTORY [FRAMES]] (default pde_surface/, 49 frames).
@@ -9,9 +9,9 @@
 #include <numbers>
 
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/grid/pde_surface.h"
 #include "dynamics/core/system.h"
+#include "dynamics/grid/pde_surface.h"
+#include "dynamics/integrators/integrator.h"
 #include "examples/example_arguments.h"
 #include "io/mesh_export.h"
 #include "surface/grid.h"

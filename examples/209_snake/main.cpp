@@ -1,4 +1,4 @@
-// A closed snake (seed 001 eqs 1.2-1.13) finding the edge of a bright disk in a synthetic
+// A closed snake (Terzopoulos 2003, eqs. 1.2-1.13) finding the edge of a bright disk in a synthetic
 // grey-scale image through the potential -|grad(G_sigma * I)|, stepped by eq 1.13 with one
 // factorization. Writes frame_NNN.obj (the contour as an OBJ polyline) into argv[1].
 // Usage: example_209_snake [OUTPUT_DIRECTORY [FRAMES]] (default snake/, 61 frames).
@@ -9,9 +9,9 @@
 #include <fstream>
 #include <numbers>
 
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/grid/snake.h"
 #include "dynamics/core/system.h"
+#include "dynamics/grid/snake.h"
+#include "dynamics/integrators/integrator.h"
 #include "examples/example_arguments.h"
 
 int main(int argc, char** argv) {

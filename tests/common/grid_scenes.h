@@ -1,5 +1,5 @@
 #pragma once
-// Scenes and measurements shared by the grid tests (seed 000's sheets on small grids).
+// Scenes and measurements shared by the grid tests (Wu & de Melo's sheets on small grids).
 
 #include <algorithm>
 #include <array>
@@ -8,9 +8,9 @@
 #include <Eigen/Core>
 
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "surface/grid.h"
 
 namespace dnurbs::test {
@@ -53,7 +53,7 @@ inline double asymmetry(const Grid& grid, const NodePositions& displacement) {
 
 /// Tangential drift under a normal load: the largest in-plane displacement relative to the
 /// largest normal (z) displacement, and the rotation about the centre (the "rotating" effect of
-/// seed 000 figure 6): |sum (p x d)_z| / sum |p|^2 over the nodes, p the rest offset from the
+/// Wu & de Melo, figure 6): |sum (p x d)_z| / sum |p|^2 over the nodes, p the rest offset from the
 /// centre, relative to the largest z displacement.
 struct Drift {
   double tangential = 0.0;

@@ -10,7 +10,7 @@
 namespace dnurbs::testing {
 
 /// Largest distance between corresponding control points of a and b (same knots, square nets),
-/// over the eight parametrisations of one surface (u and v reversed or swapped): a fit starts
+/// over the eight parametrizations of one surface (u and v reversed or swapped): a fit starts
 /// over the principal axes of its points, whose signs are arbitrary.
 inline double control_point_distance_up_to_symmetry(const NurbsSurface& a, const NurbsSurface& b) {
   const int n = a.control_point_count_u();

@@ -1,5 +1,5 @@
-// Baumgarte stabilisation (seed 001 eq 1.40) inside the integrators, and the redundant and
-// conflicting cases.
+// Baumgarte stabilization (Terzopoulos 2003, eq. 1.40) inside the integrators, and the redundant
+// and conflicting cases.
 
 #include "constraints/constraint_solver.h"
 
@@ -8,8 +8,8 @@
 #include <numbers>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "constraints/point_constraints.h"
 #include "constraints/surface_constraints.h"
@@ -65,7 +65,7 @@ TEST(Baumgarte, CriticallyDampedViolationFollowsTheClosedForm) {
     for (IntegratorScheme scheme : {IntegratorScheme::kImplicitEuler, IntegratorScheme::kNewmark}) {
       const double coarse = baumgarte_error(alpha, 2e-3, scheme);
       const double fine = baumgarte_error(alpha, 1e-3, scheme);
-      // The end-of-step condition discretises the violation ODE with the scheme's own accuracy:
+      // The end-of-step condition discretizes the violation ODE with the scheme's own accuracy:
       // first order at least, so halving dt at least nearly halves the error ...
       EXPECT_LT(fine, 0.6 * coarse) << "alpha " << alpha;
       // ... and at dt = 1e-3 the error is a small fraction of C0 = 0.054 (alpha dt <= 0.03).
@@ -78,7 +78,7 @@ TEST(Baumgarte, SculptedSurfaceKeepsPointsAndNormalConstrained) {
   // A D-NURBS surface pulled by a moving mouse spring while 3 surface points are pinned and one
   // normal is held where it was. Point constraints of a fixed-weight surface are linear in q, so
   // the end-of-step condition holds them to rounding; the normal is quadratic in q, and two
-  // Newton iterations per step remove its linearisation error.
+  // Newton iterations per step remove its linearization error.
   DNurbsSurfaceMaterial material;
   material.a10 = material.a01 = 1.0;
   material.b20 = material.b02 = 0.1;
@@ -224,7 +224,7 @@ TEST(BlockConstraintCoupling, SuperquadricHangsFromAClampedSheetByABallJoint) {
   const double sag = system.position(0, middle).z();
   std::cout << "superquadric on a sheet, 0.5 s: largest joint violation " << largest_violation
             << ", sheet centre at z = " << sag << "\n";
-  // Baumgarte-stabilised acceleration-level rows with Newton iterations at the end-of-step
+  // Baumgarte-stabilized acceleration-level rows with Newton iterations at the end-of-step
   // state: what is left is the unconverged non-linear part (the pole moves with the rotation and
   // shape) and round-off; 6e-16 measured.
   EXPECT_LT(largest_violation, 1e-8);
@@ -236,8 +236,8 @@ TEST(BlockConstraintCoupling, SuperquadricHangsFromAClampedSheetByABallJoint) {
 }
 
 // ----------------------------------------------------------------------------------------------
-// Multibody assembly with superquadric parts (seed 001 eqs 1.39-1.40): an articulated figure
-// assembled from misplaced, rotated (and, with global deformations on, misshaped) parts.
+// Multibody assembly with superquadric parts (Terzopoulos 2003, eqs. 1.39-1.40): an articulated
+// figure assembled from misplaced, rotated (and, with global deformations on, misshaped) parts.
 
 const double kHalfPi = 0.5 * std::numbers::pi;
 const Eigen::Vector2d kTopPole(kHalfPi, 0.0);      // body point (0, 0, a a3)

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "design/point_set.h"
 #include "io/mesh_import.h"
-#include "core/error.h"
 #include "tests/design/design_test_helpers.h"
 
 namespace dnurbs {
@@ -51,7 +51,7 @@ TEST(DNurbsSurfaceFitting, ReproducesAKnownSurfaceOfTheSameDegreeAndKnots) {
   EXPECT_LT(result.max_error, 1e-8);
 }
 
-TEST(DNurbsSurfaceFitting, ParameterCorrectionRecoversACurvedParameterisation) {
+TEST(DNurbsSurfaceFitting, ParameterCorrectionRecoversACurvedParameterization) {
   // The target's (x, y) are not linear in (u, v): the first projection onto the plane gives
   // wrong parameters, which the re-projections correct.
   const KnotVector knots = KnotVector::clamped_uniform(3, 6);
@@ -66,7 +66,7 @@ TEST(DNurbsSurfaceFitting, ParameterCorrectionRecoversACurvedParameterisation) {
   DNurbsFitSettings settings;
   settings.max_iterations = 40;
   const DNurbsFitResult result = fit_dnurbs_surface(model, surface_samples(target, 10), settings);
-  std::cout << "curved parameterisation: " << result.iterations << " iterations, rms "
+  std::cout << "curved parameterization: " << result.iterations << " iterations, rms "
             << result.rms_error << ", max " << result.max_error << "\n";
   // Parameter correction converges linearly; measured 1e-4 after 40 iterations.
   EXPECT_LT(result.max_error, 3e-4);
@@ -111,7 +111,7 @@ TEST(DNurbsCurveFitting, FreeWeightsFitACircularArcThatFixedWeightsCannot) {
   free.weight_mode = WeightMode::kFree;
   free.minimum_weight = 0.1;
   DNurbsCurve rational(NurbsCurve(knots, start), {}, free);
-  // Weights (1, c w, c^2) give the same arc with another parameterisation: with weight 0 fixed
+  // Weights (1, c w, c^2) give the same arc with another parameterization: with weight 0 fixed
   // (the gauge) fixing weight 2 too leaves one exact answer, w = (1, sqrt(2)/2, 1).
   rational.fix_weight(2);
   const DNurbsCurve polynomial(NurbsCurve(knots, start));

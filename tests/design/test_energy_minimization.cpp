@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "constraints/point_constraints.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "dynamics/integrators/static_equilibrium.h"
 #include "core/error.h"
+#include "dynamics/integrators/static_equilibrium.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/design/design_test_helpers.h"
 
 namespace dnurbs {
@@ -35,7 +35,7 @@ TEST(EnergyMinimization, FixedWeightsMatchTheDirectLinearSolve) {
               << result.iterations << " evaluations, status " << result.status_name << ", energy "
               << result.energy << ", distance to K q = f " << error << "\n";
     EXPECT_TRUE(result.converged()) << result.status_name;
-    // Pi is quadratic with minimiser K q = f. SLSQP (the default) stops on the 1e-14 relative
+    // Pi is quadratic with minimizer K q = f. SLSQP (the default) stops on the 1e-14 relative
     // variable tolerance: measured 8e-12. LBFGS inside AUGLAG stops on its own test of the
     // change of Pi: measured 5e-9, bounded by 5e-8.
     EXPECT_LT(error, algorithm == DesignAlgorithm::kSlsqp ? 1e-8 : 5e-8);
@@ -82,7 +82,7 @@ TEST(EnergyMinimization, BadSettingsAreRejected) {
 }
 
 // A stiff plate whose centre is pulled up by a point constraint: the interior control points
-// are expensive to move, so the optimiser also raises the weights of the interior ones.
+// are expensive to move, so the optimizer also raises the weights of the interior ones.
 TEST(EnergyMinimization, FreeWeightsMoveStayAboveTheMinimumAndMeetThePointConstraint) {
   DNurbsSettings settings;
   settings.weight_mode = WeightMode::kFree;
@@ -162,7 +162,7 @@ TEST(EnergyMinimization, SuperquadricShapeParametersBalanceTheForces) {
   EXPECT_TRUE(result.converged()) << result.status_name;
 
   // Stationarity on the free q_s: f_int(q) + f = 0, f the generalized force at the start (the
-  // work of the forces is linearised there, as in solve_static_equilibrium).
+  // work of the forces is linearized there, as in solve_static_equilibrium).
   const Eigen::VectorXd& q = result.coordinates;
   Eigen::VectorXd residual = Eigen::VectorXd::Zero(model.velocity_count());
   system.add_applied_forces(0.0, system.coordinates(), residual, residual);

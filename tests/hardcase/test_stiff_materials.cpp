@@ -1,6 +1,7 @@
 // Hard cases, stiff materials: D-NURBS rigidity w2 (curve) and b-coefficients (surface) from 1
 // to 1e8 at dt = 1/60 under implicit-euler and newmark, the stability limit of central
-// (seed 001 eq 1.13), and the conditioning of the Terzopoulos step as the rigidity xi grows.
+// (Terzopoulos 2003, eq. 1.13), and the conditioning of the Terzopoulos step as the rigidity xi
+// grows.
 
 #include <algorithm>
 #include <array>
@@ -14,12 +15,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseLU>
 
+#include "dynamics/core/system.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dynamics/grid/terzopoulos_surface.h"
 #include "dynamics/integrators/integrator.h"
 #include "dynamics/integrators/semi_implicit_step.h"
-#include "dynamics/core/system.h"
-#include "dynamics/grid/terzopoulos_surface.h"
 #include "hardcase_helpers.h"
 #include "surface/grid.h"
 
@@ -180,11 +181,11 @@ bool central_is_bounded(double dt) {
 }
 
 TEST(StiffCurve, CentralLargestStableStepAgainstTheExplicitLimit) {
-  // seed 001 eq 1.13 takes K at t + dt: (M/dt^2 + K) q(t+dt) = (2M/dt^2) q(t) - (M/dt^2) q(t-dt).
-  // A mode of frequency omega has the amplification polynomial (1 + omega^2 dt^2) z^2 - 2 z + 1,
-  // whose roots have |z| = 1/sqrt(1 + omega^2 dt^2) < 1 for every dt: no stability limit, unlike
-  // the explicit central difference whose limit is 2/omega_max. Bisection on bounded-ness over
-  // [1e-3, 1e4] times 2/omega_max therefore ends at the top of the bracket.
+  // Terzopoulos 2003, eq. 1.13 takes K at t + dt: (M/dt^2 + K) q(t+dt) = (2M/dt^2) q(t) - (M/dt^2)
+  // q(t-dt). A mode of frequency omega has the amplification polynomial (1 + omega^2 dt^2) z^2 - 2
+  // z + 1, whose roots have |z| = 1/sqrt(1 + omega^2 dt^2) < 1 for every dt: no stability limit,
+  // unlike the explicit central difference whose limit is 2/omega_max. Bisection on bounded-ness
+  // over [1e-3, 1e4] times 2/omega_max therefore ends at the top of the bracket.
   const double explicit_limit = 2.0 / largest_frequency(stiff_curve(1.0));
   double low = 1e-3 * explicit_limit;
   double high = 1e4 * explicit_limit;
@@ -253,7 +254,7 @@ TEST(StiffCurve, CentralDampsTheStiffestModeByTheAnalyticFactor) {
 
 // Terzopoulos surface: a 9 by 9 unit sheet, border clamped, eta_ii = 1, bent into a bump of
 // height 0.05 (so B - B0 and the bending coefficients beta = xi (B - B0) are non-zero), stepped
-// semi-implicitly (seed 001 eq 1.13 with K from the current tensors) at dt = 0.01.
+// semi-implicitly (Terzopoulos 2003, eq. 1.13 with K from the current tensors) at dt = 0.01.
 
 // The sheet of rigidity xi, bent into the bump, at rest (zero velocity).
 System bent_sheet(double xi) {

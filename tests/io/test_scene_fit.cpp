@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "core/error.h"
 #include "io/models/dnurbs_curve_scene.h"
 #include "io/models/dnurbs_surface_scene.h"
 #include "io/models/superquadric_scene.h"
@@ -19,7 +20,6 @@
 #include "io/scene_fit.h"
 #include "io/scene_simulation.h"
 #include "io/shape_file.h"
-#include "core/error.h"
 #include "tests/common/surface_comparison.h"
 
 namespace dnurbs {
@@ -77,7 +77,7 @@ TEST(SceneFit, FittedSuperquadricReproducesTheSampledShape) {
   const auto& spec = as<SceneSuperquadric>(scene.models[0]);
   ASSERT_TRUE(spec.fit.has_value());
   // generate_fit_points.py: sizes 1.2, 0.8, 0.6, e1 0.7, e2 1.3, taper 0.2, -0.1, no bend.
-  // Exact points: the error is the optimiser's stopping tolerance (2.4e-8 measured)
+  // Exact points: the error is the optimizer's stopping tolerance (2.4e-8 measured)
   EXPECT_NEAR(spec.shape(0), 1.0, 1e-12);
   EXPECT_NEAR(spec.shape(1), 1.2, 1e-6);
   EXPECT_NEAR(spec.shape(2), 0.8, 1e-6);

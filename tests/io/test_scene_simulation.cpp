@@ -52,7 +52,7 @@ TEST(SceneCost, DefaultDemoCountsActiveCoordinatesAndTheSavingOfEachChoice) {
   EXPECT_GT(link.naive_active, 6);
   EXPECT_FALSE(link.constant_matrices);
   EXPECT_EQ(link.matrix_non_zeros, 36);
-  // State-dependent: the 6 x 6 factorisation (sum of squared column counts 5^2 + ... + 0^2)
+  // State-dependent: the 6 x 6 factorization (sum of squared column counts 5^2 + ... + 0^2)
   // plus the two substitutions
   EXPECT_EQ(link.solve_work, 2.0 * 15 + (25 + 16 + 9 + 4 + 1));
 }

@@ -102,7 +102,7 @@ inline double brute_force_distance(const NurbsCurve& curve, const CurveSamples& 
   const bool periodic = curve.is_periodic();
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i < count; ++i) {
-    // Neighbours: a periodic curve's last sample is its first (the seam).
+    // Neighbors: a periodic curve's last sample is its first (the seam).
     const int previous = i > 0 ? i - 1 : (periodic ? count - 2 : i);
     const int next = i + 1 < count ? i + 1 : (periodic ? 1 : i);
     const double here = distance[static_cast<size_t>(i)];
@@ -262,7 +262,7 @@ inline double refine_on_surface(const NurbsSurface& surface, const Eigen::Vector
 }
 
 /// The nearest distance to the surface: Newton from every discrete local minimum of the sampled
-/// grid (8 neighbours, wrapping across periodic seams), and the brute-force distance to every
+/// grid (8 neighbors, wrapping across periodic seams), and the brute-force distance to every
 /// boundary and crease curve (whose ends are the corners).
 inline double brute_force_distance(const NurbsSurface& surface, const SurfaceSamples& samples,
                                    const Eigen::Vector3d& query) {
@@ -272,7 +272,7 @@ inline double brute_force_distance(const NurbsSurface& surface, const SurfaceSam
   for (size_t i = 0; i < samples.points.size(); ++i) {
     distance[i] = (samples.points[i] - query).norm();
   }
-  const auto neighbour = [](int i, int step, int count, bool periodic) {
+  const auto neighbor = [](int i, int step, int count, bool periodic) {
     const int j = i + step;
     if (j >= 0 && j < count) {
       return j;
@@ -287,8 +287,8 @@ inline double brute_force_distance(const NurbsSurface& surface, const SurfaceSam
       bool minimum = true;
       for (int di = -1; di <= 1 && minimum; ++di) {
         for (int dj = -1; dj <= 1 && minimum; ++dj) {
-          const int a = neighbour(i, di, count_u, surface.knots_u().is_periodic());
-          const int b = neighbour(j, dj, count_v, surface.knots_v().is_periodic());
+          const int a = neighbor(i, di, count_u, surface.knots_u().is_periodic());
+          const int b = neighbor(j, dj, count_v, surface.knots_v().is_periodic());
           minimum = here <= distance[static_cast<size_t>(a * count_v + b)];
         }
       }

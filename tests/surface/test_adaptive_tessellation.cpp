@@ -113,7 +113,7 @@ void expect_closed_adaptive(const ParametricSurface& surface, int base_u, int ba
   SCOPED_TRACE(name);
   RestrictedMesh mesh(surface, base_u, base_v);
   mesh.refine(surface_error_criterion(surface, bound), max_level);
-  EXPECT_LE(mesh.max_neighbour_level_difference(), 1);
+  EXPECT_LE(mesh.max_neighbor_level_difference(), 1);
   EXPECT_GE(mesh.max_level(), 4);
   const TriangleMesh output = mesh.to_triangle_mesh(name);
   const EdgeReport report = edge_report(output);
@@ -138,7 +138,7 @@ TEST(AdaptiveTessellation, ClosedSurfacesHaveNoCracksAndVerticesOnTheSurface) {
   expect_closed_adaptive(parametric_surface(sphere_surface), 2, 4, 2e-3, 24, "NURBS sphere");
   expect_closed_adaptive(parametric_surface(periodic_torus(3.0, 1.0)), 4, 3, 3e-3, 24,
                          "periodic torus");
-  // With e1, e2 < 1 the superquadric's parameterisation has unbounded speed where cos or sin
+  // With e1, e2 < 1 the superquadric's parameterization has unbounded speed where cos or sin
   // vanishes, and the error there falls only like h^e: depth is capped at 10 levels
   expect_closed_adaptive(parametric_surface(DeformableSuperquadricShape(squarish_superquadric())),
                          2, 4, 2e-3, 10, "superquadric");
@@ -170,7 +170,7 @@ TEST(AdaptiveTessellation, OpenSheetIsConformingWithBoundaryEdgesOnlyOnTheDomain
   const ParametricSurface surface = bumpy_sheet();
   RestrictedMesh mesh(surface, 2, 2);
   mesh.refine(surface_error_criterion(surface, 1e-4));
-  EXPECT_LE(mesh.max_neighbour_level_difference(), 1);
+  EXPECT_LE(mesh.max_neighbor_level_difference(), 1);
   const TriangleMesh output = mesh.to_triangle_mesh();
   std::map<std::pair<int, int>, int> undirected;
   for (int f = 0; f < output.triangle_count(); ++f) {
@@ -230,9 +230,9 @@ TEST(AdaptiveTessellation, ErrorCriterionMeetsTheBoundWithFewerVerticesThanUnifo
 }
 
 TEST(AdaptiveTessellation, VertexCountsOfTheThreeCriteriaForOneBound) {
-  // seed 003 section 5.2 from one base mesh of 8 x 8 cells (81 vertices, fine enough for its
-  // vertices to see the bump): unconditional (the shallowest depth meeting the bound),
-  // normals-based (the largest angle, halving from 0.4 rad, meeting it) and error-based
+  // Goldenstein et al. 2005, section 5.2 from one base mesh of 8 x 8 cells (81 vertices, fine
+  // enough for its vertices to see the bump): unconditional (the shallowest depth meeting the
+  // bound), normals-based (the largest angle, halving from 0.4 rad, meeting it) and error-based
   const ParametricSurface surface = bumpy_sheet();
   const double bound = 1e-3;
   int depth = 0;
@@ -248,8 +248,8 @@ TEST(AdaptiveTessellation, VertexCountsOfTheThreeCriteriaForOneBound) {
   }
   const AdaptiveResult error_based =
       adaptive(surface, 8, 8, surface_error_criterion(surface, bound));
-  // The mean bound alone (seed 003 eq 6): each triangle's sampled mean within it, so the
-  // area-weighted mean of the mesh (same sampling) is too
+  // The mean bound alone (Goldenstein et al. 2005, eq. 6): each triangle's sampled mean within it,
+  // so the area-weighted mean of the mesh (same sampling) is too
   const double mean_bound = 1e-4;
   RestrictedMesh mean_mesh(surface, 8, 8);
   mean_mesh.refine(
@@ -275,7 +275,7 @@ TEST(AdaptiveTessellation, OnTheSphereTheBestBaseBeatsUniformAndUnconditional) {
   // criterion pays bisection's granularity (the error halves per level, the bound falls between
   // levels: 6898 vertices against uniform's 6162 when measured);
   // refine_to_surface_error_from_best_base removes that by choosing among 20 base grids, and the
-  // parameterisation's non-uniform speed (rational quadratic arcs) and the small longitude edges
+  // parameterization's non-uniform speed (rational quadratic arcs) and the small longitude edges
   // near the poles pay.
   const ParametricSurface surface = parametric_surface(sphere(1.0));
   const double bound = 1e-3;
@@ -343,10 +343,10 @@ TEST(RestrictedMesh, WeldsUndoSplits) {
   EXPECT_NE(mesh.lattice_triangles(), depth3);
   mesh.coarsen(depth_criterion(3));
   EXPECT_EQ(mesh.lattice_triangles(), depth3);
-  EXPECT_LE(mesh.max_neighbour_level_difference(), 1);
+  EXPECT_LE(mesh.max_neighbor_level_difference(), 1);
 }
 
-TEST(RestrictedMesh, SplittingOneCornerForcesNeighboursAndKeepsLevelsWithinOne) {
+TEST(RestrictedMesh, SplittingOneCornerForcesNeighborsAndKeepsLevelsWithinOne) {
   const ParametricSurface surface = parametric_surface(periodic_torus(3.0, 1.0));
   RestrictedMesh mesh(surface, 3, 3);
   // Split the triangle at the lattice origin 16 times: the forced splits spread outwards
@@ -366,7 +366,7 @@ TEST(RestrictedMesh, SplittingOneCornerForcesNeighboursAndKeepsLevelsWithinOne) 
   }
   EXPECT_GT(forced, 0);
   EXPECT_EQ(mesh.max_level(), 16);
-  EXPECT_LE(mesh.max_neighbour_level_difference(), 1);
+  EXPECT_LE(mesh.max_neighbor_level_difference(), 1);
   const EdgeReport report = edge_report(mesh.to_triangle_mesh());
   EXPECT_EQ(report.boundary, 0);
   EXPECT_EQ(report.over_shared, 0);
@@ -397,7 +397,7 @@ TEST(RestrictedMesh, InvalidInputNamesTheValue) {
     }
   }
   EXPECT_THROW(deep.split(target), Error);
-  EXPECT_LE(deep.max_neighbour_level_difference(), 1);
+  EXPECT_LE(deep.max_neighbor_level_difference(), 1);
 }
 
 }  // namespace

@@ -63,7 +63,7 @@ TEST(SampledVectorField, WrapsAlongAPeriodicDirection) {
 }
 
 TEST(DeformationField, CascadeOfConstantAndAddVectorFollowsSeedEquations) {
-  // seed 003 eqs 3-4: p^k = p^(k-1) + q_k V_pc_k, from the mean p^0 = V_mean
+  // Goldenstein et al. 2005, eqs. 3-4: p^k = p^(k-1) + q_k V_pc_k, from the mean p^0 = V_mean
   const VectorField mean = [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); };
   const VectorField pc0 = [](double u, double v) { return Eigen::Vector3d(0.0, 0.0, u * v); };
   const VectorField pc1 = [](double u, double v) {
@@ -100,7 +100,7 @@ TEST(DeformationField, CascadeOfConstantAndAddVectorFollowsSeedEquations) {
 }
 
 // Displaces the sphere outwards by q_0 times a bump sampled on a 9 x 16 grid (a field of the
-// sphere point, so single-valued at the poles) and by a fixed unparameterised shift in z.
+// sphere point, so single-valued at the poles) and by a fixed unparameterized shift in z.
 ParametricSurface bumped_sphere(double q0) {
   const ParametricSurface sphere_surface = parametric_surface(sphere(1.0));
   const NurbsSurface nurbs = sphere(1.0);
@@ -155,7 +155,7 @@ TEST(DeformationField, AgreesAtSharedParametersAcrossResolutions) {
 }
 
 TEST(DeformationField, GeometryImageReproducesItsSamplesAtItsResolution) {
-  // seed 003 eq 2: a rigid model as a constant field of a sampled geometry image
+  // Goldenstein et al. 2005, eq. 2: a rigid model as a constant field of a sampled geometry image
   const ParametricSurface torus = parametric_surface(periodic_torus(3.0, 1.0));
   const SampledVectorField image = SampledVectorField::sample(
       torus.domain(), 12, 8, [&](double u, double v) { return torus.point(u, v); });

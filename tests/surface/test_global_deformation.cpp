@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "tests/common/superquadric_test_support.h"
 #include "surface/deformable_superquadric_shape.h"
 #include "surface/signed_power.h"
+#include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {
 namespace {
@@ -145,7 +145,7 @@ TEST(GlobalDeformation, TaperAndBendFollowTheDesignFormula) {
   EXPECT_LT((apply_global_deformation(parameters, h, p).point - expected).norm(), 1e-15);
 }
 
-TEST(GlobalDeformation, TwistRotatesByTauTimesNormalisedHeight) {
+TEST(GlobalDeformation, TwistRotatesByTauTimesNormalizedHeight) {
   const Eigen::Vector3d p(0.6, -0.4, 0.9);
   const auto twisted = twist(p, 0.9, kHalfHeight);
   const double angle = 0.9 * p.z() / kHalfHeight;
@@ -386,7 +386,7 @@ TEST(DeformableSuperquadricShape, IsFiniteWhereCosineOrSineVanish) {
               << e1 << " " << e2 << " " << u << " " << v;
           const Eigen::Vector3d normal = shape.unit_normal(u, v);
           EXPECT_TRUE(all_finite(normal)) << e1 << " " << e2 << " " << u << " " << v;
-          // Normalised by its own length: one rounding.
+          // Normalized by its own length: one rounding.
           EXPECT_NEAR(normal.norm(), 1.0, 1e-15);
         }
       }
@@ -410,7 +410,7 @@ TEST(DeformableSuperquadricShape, SphereLiesOnItsSphereWithRadialNormals) {
   }
   // A few ulps of the radius 2.5 (4.4e-16 each).
   EXPECT_LT(worst_radius, 1e-14);
-  // The normal is a normalised cross product of exact-to-rounding tangents: a few ulps too;
+  // The normal is a normalized cross product of exact-to-rounding tangents: a few ulps too;
   // the pole rows use the fallback (+-z exactly).
   EXPECT_LT(worst_normal, 1e-14);
   std::cout << "sphere: worst |r - R| " << worst_radius << ", worst |n - p/R| " << worst_normal
@@ -426,7 +426,7 @@ TEST(DeformableSuperquadricShape, NormalIsOrthogonalToTheTangentsAndOutward) {
         const double v = uv[1];
         const SuperquadricShapeEvaluation s = shape.evaluate(u, v);
         const Eigen::Vector3d normal = shape.unit_normal(u, v);
-        // Cross product then normalisation: rounding relative to the tangents' size.
+        // Cross product then normalization: rounding relative to the tangents' size.
         EXPECT_LT(std::abs(normal.dot(s.d_u)), 1e-14 * s.d_u.norm());
         EXPECT_LT(std::abs(normal.dot(s.d_v)), 1e-14 * s.d_v.norm());
       }

@@ -115,15 +115,15 @@ TEST(Grid, BadInputNamesTheValue) {
   EXPECT_NE(message([&] { grid_triangle_mesh(grid, bad); }).find("(1, 1)"), std::string::npos);
 }
 
-TEST(NodeChain, NeighboursAndInterpolation) {
+TEST(NodeChain, NeighborsAndInterpolation) {
   const NodeChain open(5, false);
   EXPECT_DOUBLE_EQ(open.spacing(), 0.25);
-  EXPECT_EQ(open.neighbour(4, 1), -1);
-  EXPECT_EQ(open.neighbour(0, -1), -1);
+  EXPECT_EQ(open.neighbor(4, 1), -1);
+  EXPECT_EQ(open.neighbor(0, -1), -1);
   const NodeChain closed(5, true);
   EXPECT_DOUBLE_EQ(closed.spacing(), 0.2);
-  EXPECT_EQ(closed.neighbour(4, 1), 0);
-  EXPECT_EQ(closed.neighbour(0, -2), 3);
+  EXPECT_EQ(closed.neighbor(4, 1), 0);
+  EXPECT_EQ(closed.neighbor(0, -2), 3);
   const auto w = closed.linear_weights(0.9);  // between node 4 (s = 0.8) and node 0 (s = 1)
   EXPECT_EQ(w[0].first, 4);
   EXPECT_EQ(w[1].first, 0);

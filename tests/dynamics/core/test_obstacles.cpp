@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "dynamics/core/forces.h"
-#include "dynamics/integrators/semi_implicit_step.h"
 #include "dynamics/core/system.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "tests/common/grid_scenes.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {
@@ -50,7 +50,7 @@ struct ClothResult {
   double hanging = 0.0;            // z of a corner (it hangs over the edge)
 };
 
-// seed 000 figure 2: a 16 by 16 table cloth (17 by 17 nodes, h = 1, grid units) with eta_ii =
+// Wu & de Melo, figure 2: a 16 by 16 table cloth (17 by 17 nodes, h = 1, grid units) with eta_ii =
 // 0.001, eta_12 = 0.0006, xi = 0 falls from 1 above a table top of 8 by 8 under gravity 1e-4.
 ClothResult table_cloth(bool projection, double friction) {
   const Grid grid(17, 17, 1.0);
@@ -166,7 +166,7 @@ double slide(bool projection, double friction) {
 TEST(Obstacles, FrictionStopsASlidingSheet) {
   // Without friction the sheet slides 1 in one second (to the O(dt) error of the contact);
   // with Coulomb friction 0.5 it stops after v / (mu g) = 0.2 s, having slid v^2 / (2 mu g) =
-  // 0.1 (within 0.05: the penalty's regularisation and the projection's impulse per step).
+  // 0.1 (within 0.05: the penalty's regularization and the projection's impulse per step).
   for (const bool projection : {false, true}) {
     EXPECT_NEAR(slide(projection, 0.0), 1.0, 0.01) << projection;
     EXPECT_NEAR(slide(projection, 0.5), 0.1, 0.05) << projection;

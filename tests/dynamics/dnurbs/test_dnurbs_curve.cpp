@@ -1,5 +1,5 @@
-// Tests of dynamics/dnurbs/dnurbs_curve.h: mass and stiffness matrices (seed 001 eqs 1.25-1.26), their
-// natural frequencies under knot refinement, and input validation.
+// Tests of dynamics/dnurbs/dnurbs_curve.h: mass and stiffness matrices (Terzopoulos 2003,
+// eqs. 1.25-1.26), their natural frequencies under knot refinement, and input validation.
 
 #include "dynamics/dnurbs/dnurbs_curve.h"
 
@@ -12,8 +12,8 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "tests/common/dynamics_test_helpers.h"
 #include "core/error.h"
+#include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {
 namespace {

@@ -1,5 +1,5 @@
-// Tests of dynamics/dnurbs/dnurbs_model.h with free weights (seed 001 eqs 1.22-1.25): the rational
-// Jacobian, Jdot qd and the generalized inertial force g against finite differences, the
+// Tests of dynamics/dnurbs/dnurbs_model.h with free weights (Terzopoulos 2003, eqs. 1.22-1.25): the
+// rational Jacobian, Jdot qd and the generalized inertial force g against finite differences, the
 // re-assembled matrices against an independent quadrature, energy conservation of free motion
 // and the minimum-weight projection.
 
@@ -12,13 +12,13 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include "core/error.h"
+#include "dynamics/core/forces.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/core/forces.h"
 #include "dynamics/integrators/integrator.h"
-#include "tests/common/dynamics_test_helpers.h"
-#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
+#include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {
 namespace {

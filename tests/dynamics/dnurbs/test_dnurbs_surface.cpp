@@ -1,6 +1,6 @@
-// Tests of dynamics/dnurbs/dnurbs_surface.h (seed 001 eq 1.27 with the thin-plate-under-tension energy
-// of eq 1.20): mass and stiffness matrices, sculpting to static equilibrium, and the pressure
-// and gravity forces of dynamics/core/forces.h.
+// Tests of dynamics/dnurbs/dnurbs_surface.h (Terzopoulos 2003, eq. 1.27 with the
+// thin-plate-under-tension energy of eq 1.20): mass and stiffness matrices, sculpting to static
+// equilibrium, and the pressure and gravity forces of dynamics/core/forces.h.
 
 #include "dynamics/dnurbs/dnurbs_surface.h"
 
@@ -11,12 +11,12 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "core/error.h"
 #include "dynamics/core/forces.h"
 #include "dynamics/integrators/integrator.h"
 #include "dynamics/integrators/static_equilibrium.h"
-#include "tests/common/dynamics_test_helpers.h"
-#include "core/error.h"
 #include "nurbs/gauss_legendre.h"
+#include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {
 namespace {

@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/core/system.h"
 #include "core/error.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/core/system.h"
+#include "dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 namespace {
@@ -158,7 +158,7 @@ TEST(PdeSurface, SeveralForcesAtOnceSimulateTheUnionOfTheirRegions) {
 }
 
 TEST(PdeSurface, BoundaryTangentsDeformWithoutForce) {
-  // seed 002 figure 9: su0 != 0 lifts the surface along the rest normal (+z) near u = 0.
+  // Romero 2005, figure 9: su0 != 0 lifts the surface along the rest normal (+z) near u = 0.
   PdeSurfaceMaterial material = damped_material();
   material.tangent_u0 = 1.0;
   const Grid grid = square_grid();

@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
+#include "dynamics/core/system.h"
 #include "dynamics/integrators/integrator.h"
 #include "dynamics/integrators/semi_implicit_step.h"
-#include "dynamics/core/system.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {
@@ -130,8 +130,8 @@ TEST(Snake, ClosedSnakeUnderRadialPotentialConvergesToTheMinimumCircle) {
 }
 
 TEST(Snake, SemiImplicitStepperIsTheCentralIntegrator) {
-  // Both are seed 001 eq 1.13 (the stepper solves for the increment, the integrator for the
-  // acceleration): the trajectories agree to round-off (1e-10 over 300 steps of values ~1).
+  // Both are Terzopoulos 2003, eq. 1.13 (the stepper solves for the increment, the integrator for
+  // the acceleration): the trajectories agree to round-off (1e-10 over 300 steps of values ~1).
   const int n = 16;
   SnakeMaterial material = random_material(n, 9);
   material.damping_density = 0.5;

@@ -44,8 +44,8 @@ struct PaperResult {
   double max_deflection = 0.0;
 };
 
-// The paper scene of seed 000 figures 5 and 7 on a 17 by 17 unit sheet: border clamped, eta_ii =
-// 0.1 (paper hardly stretches), gamma = 0.5, a normal force of 0.01 pressed on the 3 by 3 nodes
+// The paper scene of Wu & de Melo, figures 5 and 7 on a 17 by 17 unit sheet: border clamped, eta_ii
+// = 0.1 (paper hardly stretches), gamma = 0.5, a normal force of 0.01 pressed on the 3 by 3 nodes
 // at the centre, stepped 400 times with dt = 0.005 semi-implicitly as in the seed (matrix from
 // the current tensors).
 PaperResult run_paper_scene(NormalApproximation normal, double xi) {
@@ -162,8 +162,8 @@ NodePositions paraboloid(const Grid& grid, double a) {
 }
 
 TEST(TerzopoulosSurface, ChristoffelNormalIsTheUnitNormalAboveDelta) {
-  // seed 000 eqs 23-24: with |B| > delta (a = 2: B ~ 4) the Gauss formula gives the unit normal
-  // at the coefficients' own state; eqs 25-26: below delta (a = -0.05: B ~ -0.1) it is
+  // Wu & de Melo, eqs. 23-24: with |B| > delta (a = 2: B ~ 4) the Gauss formula gives the unit
+  // normal at the coefficients' own state; eqs 25-26: below delta (a = -0.05: B ~ -0.1) it is
   // -[r_ij - Gamma r_k] = -B n. Exact identities of the discrete quantities: 1e-12 (round-off).
   const Grid grid(9, 9, 0.1);
   for (const double a : {2.0, -0.05}) {
@@ -211,7 +211,7 @@ TEST(TerzopoulosSurface, ClassicStiffnessIsSymmetricAndGivesTheForce) {
 }
 
 TEST(PaperScene, ChristoffelKeepsFourFoldSymmetryAndDriftsLessThanClassic) {
-  // seed 000 figures 5-8: with the largest curving resistance of figure 7 (xi = 1e-4) the
+  // Wu & de Melo, figures 5-8: with the largest curving resistance of figure 7 (xi = 1e-4) the
   // classic normal (r_ij) folds and rotates the pressed sheet; the Christoffel normal keeps it
   // nearly four-fold symmetric without rotation. Forward differences are not mirror-symmetric,
   // so neither is exact; the in-plane displacement includes the physical pull toward the load.
@@ -232,9 +232,9 @@ TEST(PaperScene, ChristoffelKeepsFourFoldSymmetryAndDriftsLessThanClassic) {
 }
 
 TEST(PaperScene, IncreasingXiMakesTheSheetFlatterWithChristoffel) {
-  // seed 000 figure 7 (xi = 0, 5e-6, 3e-5, 1e-4): with the Christoffel normal the maximum
+  // Wu & de Melo, figure 7 (xi = 0, 5e-6, 3e-5, 1e-4): with the Christoffel normal the maximum
   // curvature falls as xi grows (measured 11.0, 10.1, 9.5, 7.3). The classic normal is recorded:
-  // it folds instead (figure 5's behaviour; measured 11.0, 49, 164, 651).
+  // it folds instead (figure 5's behavior; measured 11.0, 49, 164, 651).
   double previous = std::numeric_limits<double>::infinity();
   std::vector<double> classic;
   for (const double xi : {0.0, 5e-6, 3e-5, 1e-4}) {
@@ -248,8 +248,8 @@ TEST(PaperScene, IncreasingXiMakesTheSheetFlatterWithChristoffel) {
 }
 
 TEST(RubberSheet, LargerEtaSagsLess) {
-  // seed 000 figure 3: a rubber sheet with fixed border under gravity (xi = 0) stays flatter as
-  // eta grows (7e-7, 4e-6, 3e-5, 1e-2). 9 by 9 nodes in grid units, gravity 1e-5, t = 20000:
+  // Wu & de Melo, figure 3: a rubber sheet with fixed border under gravity (xi = 0) stays flatter
+  // as eta grows (7e-7, 4e-6, 3e-5, 1e-2). 9 by 9 nodes in grid units, gravity 1e-5, t = 20000:
   // measured sags 8.9, 5.3, 2.7, 0.39, close to the membrane scaling (g L^4 / eta)^(1/3).
   const Grid grid(9, 9, 1.0);
   double previous = std::numeric_limits<double>::infinity();
@@ -272,7 +272,7 @@ TEST(RubberSheet, LargerEtaSagsLess) {
 }
 
 TEST(TerzopoulosSurface, ClampedNodesNeverMove) {
-  // Melting cheese (seed 000 figure 1): eta = xi = 0, border fixed, gravity. The border nodes
+  // Melting cheese (Wu & de Melo, figure 1): eta = xi = 0, border fixed, gravity. The border nodes
   // are eliminated from every solve, so they keep their exact values.
   const Grid grid = unit_square_grid(9);
   for (const NormalApproximation normal : kApproximations) {
@@ -383,7 +383,7 @@ TEST(TerzopoulosSurface, SeedStepAndCommonIntegratorsReachTheSameEquilibrium) {
 }
 
 // ----------------------------------------------------------------------------------------------
-// The remaining scenes of seed 000 on small grids: cardboard pressed at its centre (figure 4),
+// The remaining scenes of Wu & de Melo on small grids: cardboard pressed at its centre (figure 4),
 // lifting a cardboard by its middle point (figure 9) and opening curtains (figures 10, 11).
 
 TEST(CardboardPress, BothNormalsAgreeForSmallCurvingResistance) {

@@ -1,6 +1,6 @@
-// Tests of dynamics/integrators/integrator.h: orders of accuracy of central (seed 001 eq 1.13),
-// implicit-euler and newmark against the exact modal solution of a linear D-NURBS string,
-// Newmark energy conservation, the factor-once fast path, and error handling.
+// Tests of dynamics/integrators/integrator.h: orders of accuracy of central (Terzopoulos 2003,
+// eq. 1.13), implicit-euler and newmark against the exact modal solution of a linear D-NURBS
+// string, Newmark energy conservation, the factor-once fast path, and error handling.
 
 #include "dynamics/integrators/integrator.h"
 
@@ -9,10 +9,10 @@
 #include <limits>
 #include <numbers>
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "dynamics/core/forces.h"

@@ -10,10 +10,10 @@
 
 #include <Eigen/Geometry>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dynamics/core/system.h"
 #include "dynamics/integrators/integrator.h"
 #include "dynamics/integrators/rigid_body_integrator.h"
-#include "dynamics/core/system.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/common/superquadric_test_helpers.h"
 
 namespace dnurbs {
@@ -208,7 +208,7 @@ TEST(RigidSuperquadric, SpinAboutIntermediateAxisFlipsWhileMajorAndMinorAxesAreS
   const FlipResult intermediate = spin_about(1, 20.0);
   const FlipResult minor = spin_about(0, 20.0);
   const FlipResult major = spin_about(2, 20.0);
-  // Linearised growth rate of the perturbation about the intermediate axis.
+  // Linearized growth rate of the perturbation about the intermediate axis.
   const double rate = 5.0 * std::sqrt((moments.y() - moments.x()) * (moments.z() - moments.y()) /
                                       (moments.x() * moments.z()));
   std::cout << "tennis racket: intermediate axis flips at t = " << intermediate.flip_time

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <iostream>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
@@ -163,7 +163,7 @@ TEST(DeformableSuperquadric, InternalForcesLeaveMomentaUnchangedUpToSecondOrderT
 }
 
 TEST(DeformableSuperquadric, LocalDeformationAloneDoesNotMoveTheCentreOfMass) {
-  // With local displacements the redundant uniform-d direction (regularised, default 1e-3)
+  // With local displacements the redundant uniform-d direction (regularized, default 1e-3)
   // vibrates fast; the drift stays at the scheme's truncation level.
   const MomentumDrift drift = momentum_drift(true, 0.005, 0.5);
   EXPECT_LT(drift.linear, 1e-3 * drift.scale);
@@ -236,7 +236,7 @@ TEST(SuperquadricConstraints, PinnedRigidSuperquadricSwingsAsAPendulumKeepingIts
   }
   std::cout << "pinned superquadric pendulum, 1 s: largest pin violation " << largest_violation
             << "\n";
-  // Baumgarte-stabilised acceleration-level constraint: drift O(dt^2) per step, corrected.
+  // Baumgarte-stabilized acceleration-level constraint: drift O(dt^2) per step, corrected.
   EXPECT_LT(largest_violation, 1e-4);
   EXPECT_LT(lowest, -0.05);  // it swung down
   EXPECT_TRUE(system.coordinates().allFinite());

@@ -1,5 +1,5 @@
 // Kinematics, matrices, forces and input checks of the deformable superquadric model
-// (dynamics/superquadric/deformable_superquadric_model.h; seed 001 eqs 1.28-1.38).
+// (dynamics/superquadric/deformable_superquadric_model.h; Terzopoulos 2003, eqs. 1.28-1.38).
 
 #include <algorithm>
 #include <cmath>
@@ -14,10 +14,10 @@
 
 #include <Eigen/Dense>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "core/error.h"
-#include "tests/common/superquadric_test_helpers.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "surface/signed_power.h"
+#include "tests/common/superquadric_test_helpers.h"
 
 namespace dnurbs {
 namespace {
@@ -523,7 +523,7 @@ TEST(DeformableSuperquadricModel, BadInputThrowsErrorNamingTheValue) {
                 Eigen::Quaterniond(2.0, 0.0, 0.0, 0.0));
       },
       "has norm 2");
-  // ... one within 1e-6 is normalised.
+  // ... one within 1e-6 is normalized.
   const Model nearly(superellipsoid(1, 1, 1, 1, 1, 1), Eigen::Vector3d::Zero(),
                      Eigen::Quaterniond(1.0 + 1e-9, 0.0, 0.0, 0.0));
   EXPECT_DOUBLE_EQ(nearly.initial_coordinates().segment<4>(3).norm(), 1.0);

@@ -34,7 +34,7 @@ TEST(SuperquadricQuadrature, GradedRuleBeatsPlainGaussForSmallExponents) {
     double exponent;
     double bound;  ///< graded error bound at 16 points per direction and cell
   };
-  // Bounds from the measured errors (x ~5). e = 0.1 is limited by the parametrisation itself:
+  // Bounds from the measured errors (x ~5). e = 0.1 is limited by the parametrization itself:
   // the cap disc of radius r needs |cos u| = r^(1/e), and |cos u| <= 1e-14 is snapped to 0
   // (kSignedPowerZero) while pi/2 - u cannot be resolved below 2e-16, so the area within
   // r ~ (1e-14)^0.1 = 0.04 of the axis (~1e-3 of the cap) is integrated inexactly; the

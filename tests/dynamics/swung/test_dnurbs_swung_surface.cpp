@@ -549,7 +549,7 @@ TEST(SwungEgg, PhysicalPressureIsOnlyFourFoldSymmetricOnTheRationalCircle) {
   }
   const double asymmetry = rotational_asymmetry(model, system.coordinates());
   std::cout << "swung sphere under pressure after 1 s: rotational asymmetry " << asymmetry << "\n";
-  EXPECT_GT(asymmetry, 1e-3);  // measured 0.19: a modelling property, not round-off
+  EXPECT_GT(asymmetry, 1e-3);  // measured 0.19: a modeling property, not round-off
   // Still 4-fold symmetric: a quarter turn of v maps the surface onto itself turned by 90 deg.
   for (const double u : {0.2, 0.5, 0.8}) {
     for (const double v : {0.05, 0.4}) {
