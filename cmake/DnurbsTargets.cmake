@@ -3,7 +3,7 @@
 # no sources yet becomes an interface library. Headers install under include/dnurbs/<folder>.
 function(dnurbs_add_library folder)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.cpp")
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.cpp")
   set(target dnurbs_${folder})
   if(sources)
     add_library(${target} ${sources})
@@ -31,7 +31,7 @@ endfunction()
 # each labelled with the folder's name and any extra labels.
 function(dnurbs_add_test_folder folder)
   cmake_parse_arguments(ARG "" "" "LABELS;DEPENDS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp")
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp")
   if(NOT sources)
     return()
   endif()

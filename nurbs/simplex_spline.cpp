@@ -1,0 +1,250 @@
+#include "nurbs/simplex_spline.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace dnurbs {
+
+namespace {
+
+// Relative collinearity threshold: |det(a, b, c)| <= kCollinear * (longest side)^2.
+constexpr double kCollinear = 1e-12;
+
+bool lexicographically_less(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+}
+
+double longest_side_squared(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                            const Eigen::Vector2d& c) {
+  return std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+}
+
+bool collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return std::abs(signed_double_area(a, b, c)) <= kCollinear * longest_side_squared(a, b, c);
+}
+
+std::vector<int> knots_of(std::uint32_t mask) {
+  std::vector<int> result;
+  for (int k = 0; mask != 0; ++k, mask >>= 1U) {
+    if ((mask & 1U) != 0U) {
+      result.push_back(k);
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+int half_open_side(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& u,
+                   const Eigen::Vector2d& direction, double tolerance) {
+  // The side is computed from the lexicographically smaller end, then flipped: the two
+  // orientations of one edge give exactly opposite answers.
+  const bool flip = lexicographically_less(q, p);
+  const Eigen::Vector2d& a = flip ? q : p;
+  const Eigen::Vector2d& b = flip ? p : q;
+  const Eigen::Vector2d edge = b - a;
+  const double sign = flip ? -1.0 : 1.0;
+  const double cross = edge.x() * (u.y() - a.y()) - edge.y() * (u.x() - a.x());
+  if (std::abs(cross) > tolerance * edge.norm()) {
+    return sign * cross > 0.0 ? 1 : -1;
+  }
+  // On the line (within the tolerance): the direction decides, then its perpendicular.
+  const double along = edge.x() * direction.y() - edge.y() * direction.x();
+  if (along != 0.0) {
+    return sign * along > 0.0 ? 1 : -1;
+  }
+  const double across = edge.x() * direction.x() + edge.y() * direction.y();  // d_perp = (-dy, dx)
+  return sign * across > 0.0 ? 1 : -1;
+}
+
+SimplexSplineSet::SimplexSplineSet(const Eigen::MatrixX2d& knots,
+                                   const std::vector<std::uint32_t>& sets,
+                                   const std::vector<int>& group)
+    : knots_(knots), group_(group) {
+  const int count = static_cast<int>(knots.rows());
+  if (count > 32) {
+    throw make_error("simplex spline set has ", count, " knots, at most 32 are supported");
+  }
+  if (!group_.empty() && static_cast<int>(group_.size()) != count) {
+    throw make_error("simplex spline set has ", count, " knots but ", group_.size(),
+                     " group indices");
+  }
+  if (!knots.allFinite()) {
+    throw make_error("simplex spline set has a knot that is not finite");
+  }
+  const std::uint32_t all = count == 32 ? 0xFFFFFFFFU : ((1U << static_cast<unsigned>(count)) - 1U);
+  std::unordered_map<std::uint32_t, int> index;
+  for (size_t s = 0; s < sets.size(); ++s) {
+    if (std::popcount(sets[s]) < 3 || (sets[s] & ~all) != 0U) {
+      throw make_error("simplex spline knot set ", s, " (mask ", sets[s], ") must name at least 3 of the ",
+                       count, " knots");
+    }
+    roots_.push_back(build(sets[s], index));
+  }
+}
+
+void SimplexSplineSet::choose_triple(std::uint32_t mask, Node& node) const {
+  const std::vector<int> members = knots_of(mask);
+  auto point = [&](int k) -> Eigen::Vector2d { return knots_.row(k).transpose(); };
+  // Candidates in order of preference: the last knot of each group (a DMS knot set minus one of
+  // these is again a DMS knot set), then every knot from the highest index down.
+  std::vector<int> preferred;
+  if (!group_.empty()) {
+    for (auto it = members.rbegin(); it != members.rend(); ++it) {
+      const bool seen = std::any_of(preferred.begin(), preferred.end(), [&](int k) {
+        return group_[static_cast<size_t>(k)] == group_[static_cast<size_t>(*it)];
+      });
+      if (!seen) {
+        preferred.push_back(*it);
+      }
+    }
+  }
+  if (preferred.size() == 3 &&
+      !collinear(point(preferred[0]), point(preferred[1]), point(preferred[2]))) {
+    std::copy(preferred.begin(), preferred.end(), node.knot);
+    return;
+  }
+  // Otherwise the triple of largest area: the barycentric coordinates of points near the set
+  // stay small, which keeps the recurrence's cancellation small.
+  const int n = static_cast<int>(members.size());
+  double best = 0.0;
+  for (int a = n - 1; a >= 2; --a) {
+    for (int b = a - 1; b >= 1; --b) {
+      for (int c = b - 1; c >= 0; --c) {
+        const int ka = members[static_cast<size_t>(a)];
+        const int kb = members[static_cast<size_t>(b)];
+        const int kc = members[static_cast<size_t>(c)];
+        const double area = std::abs(signed_double_area(point(ka), point(kb), point(kc)));
+        if (area > best && !collinear(point(ka), point(kb), point(kc))) {
+          best = area;
+          node.knot[0] = ka;
+          node.knot[1] = kb;
+          node.knot[2] = kc;
+        }
+      }
+    }
+  }
+  if (best > 0.0) {
+    return;
+  }
+  node.knot[0] = -1;  // every knot on one line: the zero function
+}
+
+int SimplexSplineSet::build(std::uint32_t mask, std::unordered_map<std::uint32_t, int>& index) {
+  const auto found = index.find(mask);
+  if (found != index.end()) {
+    return found->second;
+  }
+  Node node;
+  node.mask = mask;
+  node.degree = std::popcount(mask) - 3;
+  auto point = [&](int k) -> Eigen::Vector2d { return knots_.row(k).transpose(); };
+  int result = -1;
+  if (node.degree == 0) {
+    // Degree 0: chi_[v0, v1, v2) / |det| (corners stored counter-clockwise).
+    const std::vector<int> corners = knots_of(mask);
+    const double det = signed_double_area(point(corners[0]), point(corners[1]), point(corners[2]));
+    if (!collinear(point(corners[0]), point(corners[1]), point(corners[2]))) {
+      node.knot[0] = corners[0];
+      node.knot[1] = det > 0.0 ? corners[1] : corners[2];
+      node.knot[2] = det > 0.0 ? corners[2] : corners[1];
+      node.leaf_value = 1.0 / std::abs(det);
+      nodes_.push_back(node);
+      result = static_cast<int>(nodes_.size()) - 1;
+    }
+  } else {
+    choose_triple(mask, node);
+    if (node.knot[0] >= 0) {
+      // Children first (post-order keeps children before parents in nodes_).
+      for (int l = 0; l < 3; ++l) {
+        node.child[l] = build(mask & ~(1U << static_cast<unsigned>(node.knot[l])), index);
+      }
+      // mu_l(y | W) = det(y; w_l+1 - w_l+2 ...) / det(W): the change of lambda_l along y.
+      const double det = signed_double_area(point(node.knot[0]), point(node.knot[1]), point(node.knot[2]));
+      node.inverse_det = 1.0 / det;
+      for (int l = 0; l < 3; ++l) {
+        const Eigen::Vector2d edge = point(node.knot[(l + 2) % 3]) - point(node.knot[(l + 1) % 3]);
+        // lambda_l = ((w_l+1 - u) x (w_l+2 - u)) / det: d/du = -(edge.y), d/dv = edge.x.
+        node.mu_u[l] = -edge.y() * node.inverse_det;
+        node.mu_v[l] = edge.x() * node.inverse_det;
+      }
+      nodes_.push_back(node);
+      result = static_cast<int>(nodes_.size()) - 1;
+    }
+  }
+  index.emplace(mask, result);
+  return result;
+}
+
+void SimplexSplineSet::evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                                double tolerance, int order,
+                                Eigen::Matrix<double, 6, Eigen::Dynamic>& result) const {
+  std::vector<double> scratch;
+  evaluate(u, direction, tolerance, order, result, scratch);
+}
+
+void SimplexSplineSet::evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                                double tolerance, int order,
+                                Eigen::Matrix<double, 6, Eigen::Dynamic>& result,
+                                std::vector<double>& scratch) const {
+  if (order < 0 || order > 2) {
+    throw make_error("simplex spline derivative order ", order, " is outside 0..2");
+  }
+  scratch.resize(6 * nodes_.size());
+  auto point = [&](int k) -> Eigen::Vector2d { return knots_.row(k).transpose(); };
+  // Nodes in graph order (children first): value, gradient and Hessian of each from the values
+  // and gradients of its children (Micchelli's recurrence and the derivative formula).
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    const Node& node = nodes_[i];
+    double* out = &scratch[6 * i];
+    std::fill(out, out + 6, 0.0);
+    if (node.degree == 0) {
+      bool inside = true;
+      for (int e = 0; e < 3 && inside; ++e) {
+        inside = half_open_side(point(node.knot[e]), point(node.knot[(e + 1) % 3]), u, direction,
+                                tolerance) > 0;
+      }
+      out[0] = inside ? node.leaf_value : 0.0;
+      continue;
+    }
+    double lambda[3];
+    for (int l = 0; l < 3; ++l) {
+      const Eigen::Vector2d a = point(node.knot[(l + 1) % 3]) - u;
+      const Eigen::Vector2d b = point(node.knot[(l + 2) % 3]) - u;
+      lambda[l] = (a.x() * b.y() - a.y() * b.x()) * node.inverse_det;
+    }
+    const auto m = static_cast<double>(node.degree);
+    for (int l = 0; l < 3; ++l) {
+      if (node.child[l] < 0) {
+        continue;
+      }
+      const double* child = &scratch[6 * static_cast<size_t>(node.child[l])];
+      const double mu_u = m * node.mu_u[l];  // m mu_l(e_u | W)
+      const double mu_v = m * node.mu_v[l];
+      out[0] += lambda[l] * child[0];
+      if (order >= 1) {
+        out[1] += mu_u * child[0];
+        out[2] += mu_v * child[0];
+      }
+      if (order >= 2) {
+        out[3] += mu_u * child[1];
+        out[4] += mu_u * child[2];
+        out[5] += mu_v * child[2];
+      }
+    }
+  }
+  result.setZero(6, static_cast<Eigen::Index>(roots_.size()));
+  for (size_t s = 0; s < roots_.size(); ++s) {
+    if (roots_[s] >= 0) {
+      const double* value = &scratch[6 * static_cast<size_t>(roots_[s])];
+      for (int r = 0; r < 6; ++r) {
+        result(r, static_cast<Eigen::Index>(s)) = value[r];
+      }
+    }
+  }
+}
+
+}  // namespace dnurbs
