@@ -38,17 +38,20 @@ std::vector<int> knots_of(std::uint32_t mask) {
 
 }  // namespace
 
-int half_open_side(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& u,
-                   const Eigen::Vector2d& direction, double tolerance) {
+HalfOpenEdge::HalfOpenEdge(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
   // The side is computed from the lexicographically smaller end, then flipped: the two
   // orientations of one edge give exactly opposite answers.
   const bool flip = lexicographically_less(q, p);
-  const Eigen::Vector2d& a = flip ? q : p;
-  const Eigen::Vector2d& b = flip ? p : q;
-  const Eigen::Vector2d edge = b - a;
-  const double sign = flip ? -1.0 : 1.0;
-  const double cross = edge.x() * (u.y() - a.y()) - edge.y() * (u.x() - a.x());
-  if (std::abs(cross) > tolerance * edge.norm()) {
+  origin = flip ? q : p;
+  edge = (flip ? p : q) - origin;
+  length = edge.norm();
+  sign = flip ? -1.0 : 1.0;
+}
+
+int HalfOpenEdge::side(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                       double tolerance) const {
+  const double cross = edge.x() * (u.y() - origin.y()) - edge.y() * (u.x() - origin.x());
+  if (std::abs(cross) > tolerance * length) {
     return sign * cross > 0.0 ? 1 : -1;
   }
   // On the line (within the tolerance): the direction decides, then its perpendicular.
@@ -58,6 +61,11 @@ int half_open_side(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eig
   }
   const double across = edge.x() * direction.x() + edge.y() * direction.y();  // d_perp = (-dy, dx)
   return sign * across > 0.0 ? 1 : -1;
+}
+
+int half_open_side(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& u,
+                   const Eigen::Vector2d& direction, double tolerance) {
+  return HalfOpenEdge(p, q).side(u, direction, tolerance);
 }
 
 SimplexSplineSet::SimplexSplineSet(const Eigen::MatrixX2d& knots,
@@ -142,16 +150,25 @@ int SimplexSplineSet::build(std::uint32_t mask, std::unordered_map<std::uint32_t
   node.mask = mask;
   node.degree = std::popcount(mask) - 3;
   auto point = [&](int k) -> Eigen::Vector2d { return knots_.row(k).transpose(); };
+  const std::vector<int> members = knots_of(mask);
+  node.box_min = node.box_max = point(members.front());
+  for (const int k : members) {
+    node.box_min = node.box_min.cwiseMin(point(k));
+    node.box_max = node.box_max.cwiseMax(point(k));
+  }
   int result = -1;
   if (node.degree == 0) {
     // Degree 0: chi_[v0, v1, v2) / |det| (corners stored counter-clockwise).
-    const std::vector<int> corners = knots_of(mask);
+    const std::vector<int>& corners = members;
     const double det = signed_double_area(point(corners[0]), point(corners[1]), point(corners[2]));
     if (!collinear(point(corners[0]), point(corners[1]), point(corners[2]))) {
       node.knot[0] = corners[0];
       node.knot[1] = det > 0.0 ? corners[1] : corners[2];
       node.knot[2] = det > 0.0 ? corners[2] : corners[1];
       node.leaf_value = 1.0 / std::abs(det);
+      for (int e = 0; e < 3; ++e) {
+        node.edges[e] = HalfOpenEdge(point(node.knot[e]), point(node.knot[(e + 1) % 3]));
+      }
       nodes_.push_back(node);
       result = static_cast<int>(nodes_.size()) - 1;
     }
@@ -201,11 +218,15 @@ void SimplexSplineSet::evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d&
     const Node& node = nodes_[i];
     double* out = &scratch[6 * i];
     std::fill(out, out + 6, 0.0);
+    // Outside the knots' bounding box the spline and its derivatives vanish.
+    if (u.x() < node.box_min.x() - tolerance || u.y() < node.box_min.y() - tolerance ||
+        u.x() > node.box_max.x() + tolerance || u.y() > node.box_max.y() + tolerance) {
+      continue;
+    }
     if (node.degree == 0) {
       bool inside = true;
       for (int e = 0; e < 3 && inside; ++e) {
-        inside = half_open_side(point(node.knot[e]), point(node.knot[(e + 1) % 3]), u, direction,
-                                tolerance) > 0;
+        inside = node.edges[e].side(u, direction, tolerance) > 0;
       }
       out[0] = inside ? node.leaf_value : 0.0;
       continue;

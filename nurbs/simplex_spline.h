@@ -41,6 +41,20 @@ namespace dnurbs {
 int half_open_side(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& u,
                    const Eigen::Vector2d& direction, double tolerance);
 
+/// An edge p -> q prepared for repeated half-open side tests: its lexicographically smaller end
+/// `origin`, the vector to the other end, its length and the orientation sign (+1 if p is the
+/// smaller end). side(u, ...) equals half_open_side(p, q, u, ...).
+struct HalfOpenEdge {
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  Eigen::Vector2d edge = Eigen::Vector2d::Zero();
+  double length = 0.0;
+  double sign = 1.0;
+
+  HalfOpenEdge() = default;
+  HalfOpenEdge(const Eigen::Vector2d& p, const Eigen::Vector2d& q);
+  int side(const Eigen::Vector2d& u, const Eigen::Vector2d& direction, double tolerance) const;
+};
+
 /// Twice the signed area of the triangle (a, b, c): positive if counter-clockwise.
 inline double signed_double_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                                  const Eigen::Vector2d& c) {
@@ -101,6 +115,11 @@ class SimplexSplineSet {
     double inverse_det = 0.0;
     double mu_u[3] = {0.0, 0.0, 0.0};
     double mu_v[3] = {0.0, 0.0, 0.0};
+    // Bounding box of the knots (the spline and its derivatives vanish outside it) and, for
+    // leaves, the three edges prepared for the half-open test.
+    Eigen::Vector2d box_min = Eigen::Vector2d::Zero();
+    Eigen::Vector2d box_max = Eigen::Vector2d::Zero();
+    HalfOpenEdge edges[3];
   };
 
   int build(std::uint32_t mask, std::unordered_map<std::uint32_t, int>& index);

@@ -36,12 +36,17 @@ inline constexpr int kMaxTriangularDegree = 6;
 
 /// Settings of the standard knot placement (standard_knot_clouds).
 struct KnotCloudSettings {
-  /// Cloud radius as a fraction rho of the vertex's local size h_i, the smallest height at
-  /// vertex i of the triangles around it: knot b (1..n) lies at distance
-  /// rho h_i (1/2 + b / (2 n)) from the vertex. rho in (0, 0.25] keeps every knot triangle of
-  /// condition 2 positive (moving each corner of a triangle by at most rho times its height
-  /// changes its determinant by at most (3 rho + 3 rho^2 + rho^3) of itself).
-  double radius = 0.2;
+  /// Cloud radius as a fraction rho (0 < rho < 0.5) of the vertex's local size h_i, the smallest
+  /// height at vertex i of the triangles around it: knot b (1..n) lies at distance
+  /// rho h_i (1/2 + b / (2 n)) from the vertex. Moving each corner of a knot triangle by at most
+  /// rho times its height changes its determinant by about 3 rho of itself to first order, so
+  /// small rho keeps condition 2; check_knot_clouds decides. Larger clouds spread the knot
+  /// segments (where the n-th derivatives jump) over the triangles instead of crowding them
+  /// along the edges: the deflection error of the simply supported plate of degree 2 on 8 x 8
+  /// cells is 3.7%, 2.9%, 2.3% and 1.6% for rho = 0.1, 0.2, 0.3 and 0.45 (the standard
+  /// placement passes the checks up to 0.45 on the test domains for degrees 1..6). 0.3 leaves
+  /// a margin for irregular triangulations.
+  double radius = 0.3;
   /// Candidate rotations of the cloud tried per vertex (the best by knot quality is kept).
   int candidates = 24;
 };
