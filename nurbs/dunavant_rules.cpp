@@ -164,7 +164,14 @@ RealVector residuals(const std::vector<Orbit>& orbits, const RealVector& p, int 
       exact /= Real(i + j + 1) * Real(i + j + 2);
       Real sum = 0;
       for (const auto& point : points) {
-        sum += point[2] * std::pow(point[0], i) * std::pow(point[1], j);
+        Real term = point[2];
+        for (int k = 0; k < i; ++k) {
+          term *= point[0];
+        }
+        for (int k = 0; k < j; ++k) {
+          term *= point[1];
+        }
+        sum += term;
       }
       r[row++] = sum - exact;
     }

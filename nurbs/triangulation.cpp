@@ -72,9 +72,9 @@ Triangulation::Triangulation(Eigen::MatrixX2d vertices, Eigen::MatrixX3i triangl
     }
     domain_area_ += 0.5 * twice_area;
   }
-  build_connectivity();
   build_bins();
   check_geometry();
+  build_connectivity();
 }
 
 void Triangulation::build_connectivity() {
