@@ -50,7 +50,7 @@ struct TriangularDNurbsSettings {
   int quadrature_degree = 0;
   /// 0 (the default): the rule on the polynomial cells of every domain triangle (exact, see
   /// triangular_quadrature.h); s >= 1: a composite rule on s^2 sub-triangles per domain triangle,
-  /// which ignores the knot segments (relative error of K about 0.2 at s = 8 for degree 2).
+  /// which ignores the knot segments (relative error of K about 0.1 at s = 8 for degree 2).
   int quadrature_subdivisions = 0;
   /// Free weights: lower bound, gauge and inertia as DNurbsSettings.
   double minimum_weight = 1e-3;
