@@ -230,8 +230,7 @@ TriangleRule polished_rule(const RuleEntry& entry) {
     rule.barycentric(row, 0) = static_cast<double>(1 - points[g][0] - points[g][1]);
     rule.weights[row] = static_cast<double>(points[g][2]);
   }
-  rule.interior_and_positive =
-      rule.barycentric.minCoeff() >= 0.0 && rule.weights.minCoeff() > 0.0;
+  rule.interior_and_positive = rule.barycentric.minCoeff() >= 0.0 && rule.weights.minCoeff() > 0.0;
   return rule;
 }
 
@@ -283,17 +282,17 @@ TriangleRule subdivided_rule(const TriangleRule& rule, int subdivisions) {
         const Eigen::Vector3d base(i, j, total - i - j);
         std::array<Eigen::Vector3d, 3> corners;
         for (int c = 0; c < 3; ++c) {
-          const Eigen::Vector3d step = inverted == 0
-                                           ? Eigen::Vector3d(Eigen::Vector3d::Unit(c))
-                                           : Eigen::Vector3d(Eigen::Vector3d::Ones() - Eigen::Vector3d::Unit(c));
+          const Eigen::Vector3d step =
+              inverted == 0 ? Eigen::Vector3d(Eigen::Vector3d::Unit(c))
+                            : Eigen::Vector3d(Eigen::Vector3d::Ones() - Eigen::Vector3d::Unit(c));
           corners[static_cast<size_t>(c)] = base + step;
           corners[static_cast<size_t>(c)] /= s;
         }
         for (int g = 0; g < count; ++g, ++row) {
-          result.barycentric.row(row) = (rule.barycentric(g, 0) * corners[0] +
-                                         rule.barycentric(g, 1) * corners[1] +
-                                         rule.barycentric(g, 2) * corners[2])
-                                            .transpose();
+          result.barycentric.row(row) =
+              (rule.barycentric(g, 0) * corners[0] + rule.barycentric(g, 1) * corners[1] +
+               rule.barycentric(g, 2) * corners[2])
+                  .transpose();
           result.weights[row] = rule.weights[g] / (s * s);
         }
       }

@@ -87,8 +87,8 @@ SimplexSplineSet::SimplexSplineSet(const Eigen::MatrixX2d& knots,
   std::unordered_map<std::uint32_t, int> index;
   for (size_t s = 0; s < sets.size(); ++s) {
     if (std::popcount(sets[s]) < 3 || (sets[s] & ~all) != 0U) {
-      throw make_error("simplex spline knot set ", s, " (mask ", sets[s], ") must name at least 3 of the ",
-                       count, " knots");
+      throw make_error("simplex spline knot set ", s, " (mask ", sets[s],
+                       ") must name at least 3 of the ", count, " knots");
     }
     roots_.push_back(build(sets[s], index));
   }
@@ -180,7 +180,8 @@ int SimplexSplineSet::build(std::uint32_t mask, std::unordered_map<std::uint32_t
         node.child[l] = build(mask & ~(1U << static_cast<unsigned>(node.knot[l])), index);
       }
       // mu_l(y | W) = det(y; w_l+1 - w_l+2 ...) / det(W): the change of lambda_l along y.
-      const double det = signed_double_area(point(node.knot[0]), point(node.knot[1]), point(node.knot[2]));
+      const double det =
+          signed_double_area(point(node.knot[0]), point(node.knot[1]), point(node.knot[2]));
       node.inverse_det = 1.0 / det;
       for (int l = 0; l < 3; ++l) {
         const Eigen::Vector2d edge = point(node.knot[(l + 2) % 3]) - point(node.knot[(l + 1) % 3]);

@@ -38,8 +38,9 @@ bool separated_by_edge_of(const std::vector<Eigen::Vector2d>& a,
     const Eigen::Vector2d& p = a[e];
     const Eigen::Vector2d& q = a[(e + 1) % a.size()];
     const double limit = -tolerance * (q - p).norm();
-    if (std::all_of(b.begin(), b.end(),
-                    [&](const Eigen::Vector2d& x) { return signed_double_area(p, q, x) < limit; })) {
+    if (std::all_of(b.begin(), b.end(), [&](const Eigen::Vector2d& x) {
+          return signed_double_area(p, q, x) < limit;
+        })) {
       return true;
     }
   }
@@ -92,7 +93,8 @@ TriangularBSplineBasis::TriangularBSplineBasis(Triangulation triangulation,
         }
       }
       sets.push_back(mask);
-      normalization_[static_cast<size_t>(t * per_triangle_ + b)] = signed_double_area(
+      const int function = t * per_triangle_ + b;
+      normalization_[static_cast<size_t>(function)] = signed_double_area(
           knots.row(beta[0]).transpose(), knots.row((n + 1) + beta[1]).transpose(),
           knots.row(2 * (n + 1) + beta[2]).transpose());
     }
@@ -114,9 +116,8 @@ TriangularBSplineBasis::TriangularBSplineBasis(Triangulation triangulation,
     near.erase(std::unique(near.begin(), near.end()), near.end());
     const auto& hull = hulls[static_cast<size_t>(s)];
     for (const int t : near) {
-      const std::vector<Eigen::Vector2d> corners = {triangulation_.corner(t, 0),
-                                                    triangulation_.corner(t, 1),
-                                                    triangulation_.corner(t, 2)};
+      const std::vector<Eigen::Vector2d> corners = {
+          triangulation_.corner(t, 0), triangulation_.corner(t, 1), triangulation_.corner(t, 2)};
       if (!separated_by_edge_of(hull, corners, tolerance_) &&
           !separated_by_edge_of(corners, hull, tolerance_)) {
         overlapping_[static_cast<size_t>(t)].push_back(s);
@@ -131,8 +132,8 @@ TriangularBSplineBasis::TriangularBSplineBasis(Triangulation triangulation,
 int TriangularBSplineBasis::local_index(const std::array<int, 3>& beta) const {
   const auto found = std::find(multi_indices_.begin(), multi_indices_.end(), beta);
   if (found == multi_indices_.end()) {
-    throw make_error("multi-index (", beta[0], ", ", beta[1], ", ", beta[2],
-                     ") is not of degree ", degree());
+    throw make_error("multi-index (", beta[0], ", ", beta[1], ", ", beta[2], ") is not of degree ",
+                     degree());
   }
   return static_cast<int>(found - multi_indices_.begin());
 }
@@ -217,7 +218,7 @@ void TriangularBSplineBasis::evaluate_in_triangle(int t, const Eigen::Vector2d& 
     const int s = overlapping[k];
     const int first = static_cast<int>(k) * per_triangle_;
     for (int b = 0; b < per_triangle_; ++b) {
-      values.function[static_cast<size_t>(first + b)] = s * per_triangle_ + b;
+      values.function[static_cast<size_t>(first) + static_cast<size_t>(b)] = s * per_triangle_ + b;
     }
     // Outside the knot box every B-spline of triangle s is zero.
     const Eigen::Vector4d& box = knot_box_[static_cast<size_t>(s)];
@@ -228,8 +229,7 @@ void TriangularBSplineBasis::evaluate_in_triangle(int t, const Eigen::Vector2d& 
     splines_[static_cast<size_t>(s)].evaluate(u, direction, tolerance_, order, values.simplex,
                                               values.scratch);
     for (int b = 0; b < per_triangle_; ++b) {
-      values.value.col(first + b) =
-          normalization_[static_cast<size_t>(s * per_triangle_ + b)] * values.simplex.col(b);
+      values.value.col(first + b) = normalization(s * per_triangle_ + b) * values.simplex.col(b);
     }
   }
 }

@@ -5,7 +5,8 @@
 // Computing in Euclidean Geometry, 1992; the basis of Qin & Terzopoulos, "Triangular NURBS and
 // their dynamic generalizations", Computer Aided Geometric Design 14, 1997, eq. 1):
 //
-//   N_beta^I(u) = d_beta^I M(u | V_beta^I),   d_beta^I = det(t_{i,beta_0}, t_{j,beta_1}, t_{k,beta_2}),
+//   N_beta^I(u) = d_beta^I M(u | V_beta^I),   d_beta^I = det(t_{i,beta_0}, t_{j,beta_1},
+//   t_{k,beta_2}),
 //
 // for every triangle I = (i, j, k) and |beta| = n, with the knot sets V_beta^I of
 // triangular_knot_clouds.h and the simplex splines M of simplex_spline.h (Seidel's
@@ -111,11 +112,11 @@ class TriangularBSplineBasis {
   TriangularKnotClouds clouds_;
   int per_triangle_ = 0;
   std::vector<std::array<int, 3>> multi_indices_;
-  std::vector<SimplexSplineSet> splines_;            // per triangle, sets in local order
-  std::vector<double> normalization_;                // per function
-  std::vector<Eigen::Vector4d> knot_box_;            // per triangle: min u, min v, max u, max v
-  std::vector<std::vector<int>> overlapping_;        // per triangle
-  double tolerance_ = 0.0;                           // snap distance
+  std::vector<SimplexSplineSet> splines_;      // per triangle, sets in local order
+  std::vector<double> normalization_;          // per function
+  std::vector<Eigen::Vector4d> knot_box_;      // per triangle: min u, min v, max u, max v
+  std::vector<std::vector<int>> overlapping_;  // per triangle
+  double tolerance_ = 0.0;                     // snap distance
 };
 
 }  // namespace dnurbs

@@ -77,8 +77,7 @@ void for_each_multi_index_up_to(int n, Visit visit) {
   }
 }
 
-void check_triangle(const Triangulation& triangulation, const TriangularKnotClouds& clouds,
-                    int t) {
+void check_triangle(const Triangulation& triangulation, const TriangularKnotClouds& clouds, int t) {
   const int n = clouds.degree();
   const Eigen::MatrixX2d knots = triangle_knots(triangulation, clouds, t);
   auto name = [&](int local) {
@@ -95,8 +94,8 @@ void check_triangle(const Triangulation& triangulation, const TriangularKnotClou
     const int c = 2 * (n + 1) + b2;
     const double area = relative_area(point(a), point(b), point(c));
     if (area <= TriangularKnotClouds::kGeneralPosition) {
-      throw make_error("knot clouds violate the DMS condition in triangle ", t, ": the knot triangle (",
-                       name(a), ", ", name(b), ", ", name(c),
+      throw make_error("knot clouds violate the DMS condition in triangle ", t,
+                       ": the knot triangle (", name(a), ", ", name(b), ", ", name(c),
                        ") has relative signed area ", area,
                        "; it must be counter-clockwise like the triangle and not degenerate");
     }
@@ -118,8 +117,7 @@ void check_triangle(const Triangulation& triangulation, const TriangularKnotClou
       for (int c = b + 1; c < count; ++c) {
         const double area = std::abs(relative_area(point(a), point(b), point(c)));
         if (area <= TriangularKnotClouds::kGeneralPosition) {
-          throw make_error("knots ", name(a), ", ", name(b), " and ",
-                           name(c), " of triangle ", t,
+          throw make_error("knots ", name(a), ", ", name(b), " and ", name(c), " of triangle ", t,
                            " are collinear (relative area ", area,
                            "): knots must be in general position");
         }
@@ -159,9 +157,10 @@ double placement_quality(const Triangulation& triangulation, const Eigen::Matrix
           }
           const double area = relative_area(points[a], points[b], points[c]);
           // A knot triangle of condition 2 takes one knot of each corner in corner order.
-          const bool dms = index_of[a] / (n + 1) == 0 && index_of[b] / (n + 1) == 1 &&
-                           index_of[c] / (n + 1) == 2 &&
-                           index_of[a] % (n + 1) + index_of[b] % (n + 1) + index_of[c] % (n + 1) <= n;
+          const bool dms =
+              index_of[a] / (n + 1) == 0 && index_of[b] / (n + 1) == 1 &&
+              index_of[c] / (n + 1) == 2 &&
+              index_of[a] % (n + 1) + index_of[b] % (n + 1) + index_of[c] % (n + 1) <= n;
           if (dms && area <= 0.0) {
             return -1.0;
           }
@@ -229,7 +228,8 @@ TriangularKnotClouds standard_knot_clouds(const Triangulation& triangulation, in
     // Local size: the smallest height at vertex i of its triangles.
     double size = std::numeric_limits<double>::infinity();
     for (const int t : triangulation.vertex_triangles(i)) {
-      const int c = triangulation.triangles()(t, 0) == i ? 0 : (triangulation.triangles()(t, 1) == i ? 1 : 2);
+      const int c =
+          triangulation.triangles()(t, 0) == i ? 0 : (triangulation.triangles()(t, 1) == i ? 1 : 2);
       const Eigen::Vector2d p = triangulation.corner(t, (c + 1) % 3);
       const Eigen::Vector2d q = triangulation.corner(t, (c + 2) % 3);
       size = std::min(size, signed_double_area(v, p, q) / (q - p).norm());
@@ -275,8 +275,9 @@ TriangularKnotClouds standard_knot_clouds(const Triangulation& triangulation, in
 
 void check_knot_clouds(const Triangulation& triangulation, const TriangularKnotClouds& clouds) {
   if (clouds.vertex_count() != triangulation.vertex_count()) {
-    throw make_error("knot clouds for ", clouds.vertex_count(), " vertices used with a triangulation of ",
-                     triangulation.vertex_count(), " vertices");
+    throw make_error("knot clouds for ", clouds.vertex_count(),
+                     " vertices used with a triangulation of ", triangulation.vertex_count(),
+                     " vertices");
   }
   const int n = clouds.degree();
   for (int i = 0; i < triangulation.vertex_count(); ++i) {
@@ -294,9 +295,9 @@ void check_knot_clouds(const Triangulation& triangulation, const TriangularKnotC
       for (int b = 1; b <= n; ++b) {
         const double side = signed_double_area(p, q, clouds.knot(v, b)) / (q - p).squaredNorm();
         if (side >= -TriangularKnotClouds::kGeneralPosition) {
-          throw make_error("knot t[", v, "][", b, "] lies inside the domain across the boundary edge (",
-                           boundary(e, 0), ", ", boundary(e, 1),
-                           ") (relative signed distance ", side,
+          throw make_error("knot t[", v, "][", b,
+                           "] lies inside the domain across the boundary edge (", boundary(e, 0),
+                           ", ", boundary(e, 1), ") (relative signed distance ", side,
                            "): knots of boundary vertices must lie outside every boundary edge at "
                            "the vertex, or the B-splines do not sum to one near the boundary");
         }

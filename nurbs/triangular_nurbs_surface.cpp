@@ -49,7 +49,8 @@ void triangular_rational_jacobian(const TriangularBasisValues& basis, int order,
   // Weight function W^alpha = sum_a w_a N_a^alpha.
   std::array<double, 6> weight_sum{};
   for (int a = 0; a < n; ++a) {
-    const double w = net.weights[basis.function[static_cast<size_t>(a)] * net.weight_stride];
+    const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
+    const double w = net.weights[node * net.weight_stride];
     for (int alpha = 0; alpha < quantities; ++alpha) {
       weight_sum[static_cast<size_t>(alpha)] += w * basis.value(alpha, a);
     }
@@ -77,7 +78,7 @@ void triangular_rational_jacobian(const TriangularBasisValues& basis, int order,
     point.setZero();
   }
   for (int a = 0; a < n; ++a) {
-    const int node = basis.function[static_cast<size_t>(a)];
+    const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
     const double w = net.weights[node * net.weight_stride];
     const Eigen::Map<const Eigen::Vector3d> position(net.positions + node * net.position_stride);
     for (int alpha = 0; alpha < quantities; ++alpha) {
@@ -99,7 +100,7 @@ void triangular_rational_jacobian(const TriangularBasisValues& basis, int order,
     auto& column = jacobian.weight_column[static_cast<size_t>(alpha)];
     const LeibnizTerms& leibniz = kLeibniz[static_cast<size_t>(alpha)];
     for (int a = 0; a < n; ++a) {
-      const int node = basis.function[static_cast<size_t>(a)];
+      const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
       const Eigen::Map<const Eigen::Vector3d> position(net.positions + node * net.position_stride);
       Eigen::Vector3d value = jacobian.phi(alpha, a) * position -
                               jacobian.phi(0, a) * jacobian.point[static_cast<size_t>(alpha)];
@@ -188,7 +189,8 @@ Eigen::Vector3d TriangularNurbsSurface::unit_normal(const Eigen::Vector2d& u) co
   return normal / length;
 }
 
-TriangularNurbsSurface flat_triangular_surface(std::shared_ptr<const TriangularBSplineBasis> basis) {
+TriangularNurbsSurface flat_triangular_surface(
+    std::shared_ptr<const TriangularBSplineBasis> basis) {
   if (!basis) {
     throw make_error("flat triangular surface without a basis");
   }

@@ -35,11 +35,11 @@ struct TriangularControlNet {
 /// x, x_u, x_v, x_uu, x_uv, x_vv; only those of total order <= `order` are filled.
 struct TriangularRationalJacobian {
   int order = 0;
-  double weight_sum = 0.0;                              ///< W = sum_a w_a N_a
-  Eigen::Matrix<double, 6, Eigen::Dynamic> rational;    ///< R(alpha, a) = D^alpha (w_a N_a / W)
-  Eigen::Matrix<double, 6, Eigen::Dynamic> phi;         ///< phi(alpha, a) = D^alpha (N_a / W)
+  double weight_sum = 0.0;                            ///< W = sum_a w_a N_a
+  Eigen::Matrix<double, 6, Eigen::Dynamic> rational;  ///< R(alpha, a) = D^alpha (w_a N_a / W)
+  Eigen::Matrix<double, 6, Eigen::Dynamic> phi;       ///< phi(alpha, a) = D^alpha (N_a / W)
   std::array<Eigen::Matrix<double, 3, Eigen::Dynamic>, 6> weight_column;  ///< [alpha].col(a)
-  std::array<Eigen::Vector3d, 6> point;                 ///< x^alpha
+  std::array<Eigen::Vector3d, 6> point;                                   ///< x^alpha
 };
 
 /// Quotient rule for the rational Jacobian from the non-rational B-spline values (order 0..2;

@@ -89,8 +89,7 @@ std::pair<ConvexPolygon, ConvexPolygon> split(const ConvexPolygon& polygon,
   const size_t count = polygon.size();
   for (size_t k = 0; k < count; ++k) {
     const double s0 = std::abs(side[k]) <= tolerance ? 0.0 : side[k];
-    const double s1 =
-        std::abs(side[(k + 1) % count]) <= tolerance ? 0.0 : side[(k + 1) % count];
+    const double s1 = std::abs(side[(k + 1) % count]) <= tolerance ? 0.0 : side[(k + 1) % count];
     if (s0 >= 0.0) {
       left.push_back(polygon[k]);
     }

@@ -65,8 +65,8 @@ Triangulation::Triangulation(Eigen::MatrixX2d vertices, Eigen::MatrixX3i triangl
     const double longest =
         std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
     if (twice_area <= kDegenerateArea * longest) {
-      throw make_error("triangle ", t, " (vertices ", triangles_(t, 0), ", ", triangles_(t, 1), ", ",
-                       triangles_(t, 2), ") has signed area ", 0.5 * twice_area,
+      throw make_error("triangle ", t, " (vertices ", triangles_(t, 0), ", ", triangles_(t, 1),
+                       ", ", triangles_(t, 2), ") has signed area ", 0.5 * twice_area,
                        twice_area < 0.0 ? ": it is clockwise, triangles must be counter-clockwise"
                                         : ": it is degenerate");
     }
@@ -80,7 +80,7 @@ Triangulation::Triangulation(Eigen::MatrixX2d vertices, Eigen::MatrixX3i triangl
 void Triangulation::build_connectivity() {
   // Directed edges: each may appear once (twice means overlapping or flipped triangles).
   std::unordered_map<std::uint64_t, int> directed;  // (a, b) -> 3 t + e
-  directed.reserve(static_cast<size_t>(3 * triangle_count()));
+  directed.reserve(3 * static_cast<size_t>(triangle_count()));
   for (int t = 0; t < triangle_count(); ++t) {
     for (int e = 0; e < 3; ++e) {
       const int a = triangles_(t, (e + 1) % 3);
@@ -93,7 +93,7 @@ void Triangulation::build_connectivity() {
       }
     }
   }
-  neighbors_.assign(static_cast<size_t>(3 * triangle_count()), -1);
+  neighbors_.assign(3 * static_cast<size_t>(triangle_count()), -1);
   boundary_next_.assign(static_cast<size_t>(vertex_count()), -1);
   boundary_previous_.assign(static_cast<size_t>(vertex_count()), -1);
   for (const auto& [key, slot] : directed) {
@@ -286,8 +286,8 @@ bool Triangulation::closed_contains(int t, const Eigen::Vector2d& u, double tole
 
 bool Triangulation::half_open_contains(int t, const Eigen::Vector2d& u, double tolerance) const {
   for (int e = 0; e < 3; ++e) {
-    if (half_open_side(corner(t, e), corner(t, (e + 1) % 3), u, half_open_direction(),
-                       tolerance) < 0) {
+    if (half_open_side(corner(t, e), corner(t, (e + 1) % 3), u, half_open_direction(), tolerance) <
+        0) {
       return false;
     }
   }
@@ -299,7 +299,8 @@ int Triangulation::locate(const Eigen::Vector2d& u) const {
     throw make_error("cannot locate the point (", u.x(), ", ", u.y(), "): it is not finite");
   }
   const double tolerance = kLocateTolerance * diameter_;
-  const Eigen::Vector2d box_max = box_min_ + bin_size_.cwiseProduct(Eigen::Vector2d(bins_x_, bins_y_));
+  const Eigen::Vector2d box_max =
+      box_min_ + bin_size_.cwiseProduct(Eigen::Vector2d(bins_x_, bins_y_));
   if ((u.array() < box_min_.array() - tolerance).any() ||
       (u.array() > box_max.array() + tolerance).any()) {
     return -1;

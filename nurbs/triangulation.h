@@ -94,9 +94,9 @@ class Triangulation {
 
   Eigen::MatrixX2d vertices_;
   Eigen::MatrixX3i triangles_;
-  std::vector<int> neighbors_;                       // 3 per triangle
-  std::vector<std::vector<int>> vertex_triangles_;   // fan of each vertex, counter-clockwise
-  std::vector<int> boundary_next_;                   // -1 for interior vertices
+  std::vector<int> neighbors_;                      // 3 per triangle
+  std::vector<std::vector<int>> vertex_triangles_;  // fan of each vertex, counter-clockwise
+  std::vector<int> boundary_next_;                  // -1 for interior vertices
   std::vector<int> boundary_previous_;
   double domain_area_ = 0.0;
   double diameter_ = 0.0;

@@ -118,10 +118,11 @@ Triangulation refine_triangulation(const Triangulation& triangulation) {
     const int ab = midpoint_of(a, b);
     const int bc = midpoint_of(b, c);
     const int ca = midpoint_of(c, a);
-    triangles.row(4 * t) << a, ab, ca;
-    triangles.row(4 * t + 1) << ab, b, bc;
-    triangles.row(4 * t + 2) << ca, bc, c;
-    triangles.row(4 * t + 3) << ab, bc, ca;
+    const Eigen::Index row = 4 * static_cast<Eigen::Index>(t);
+    triangles.row(row) << a, ab, ca;
+    triangles.row(row + 1) << ab, b, bc;
+    triangles.row(row + 2) << ca, bc, c;
+    triangles.row(row + 3) << ab, bc, ca;
   }
   Eigen::MatrixX2d vertices(old_count + static_cast<int>(added.size()), 2);
   vertices.topRows(old_count) = triangulation.vertices();

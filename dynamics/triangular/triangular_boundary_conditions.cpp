@@ -40,7 +40,8 @@ std::vector<double> edge_breakpoints(const TriangularBSplineBasis& basis, int t,
   const Eigen::MatrixX4d segments = knot_segments_in_triangle(basis, t);
   for (Eigen::Index k = 0; k < segments.rows(); ++k) {
     for (int end = 0; end < 2; ++end) {
-      const Eigen::Vector2d x = segments.row(k).segment<2>(2 * end).transpose();
+      const Eigen::Vector2d x =
+          segments.row(k).segment<2>(2 * static_cast<Eigen::Index>(end)).transpose();
       if (std::abs(edge.x() * (x.y() - p.y()) - edge.y() * (x.x() - p.x())) <= tolerance * length) {
         const double s = (x - p).dot(edge) / (length * length);
         if (s > 0.0 && s < 1.0) {
@@ -83,8 +84,8 @@ Eigen::SparseMatrix<double> boundary_trace_conditions(const TriangularBSplineBas
     const std::vector<double> breaks = edge_breakpoints(basis, t, p, q);
     for (size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
       for (int g = 0; g <= n; ++g) {
-        const double s = breaks[piece] + (breaks[piece + 1] - breaks[piece]) *
-                                              0.5 * (rule.nodes[g] + 1.0);
+        const double s =
+            breaks[piece] + (breaks[piece + 1] - breaks[piece]) * 0.5 * (rule.nodes[g] + 1.0);
         basis.evaluate_in_triangle(t, p + s * (q - p), clamped ? 1 : 0, values);
         for (int a = 0; a < values.count; ++a) {
           const int function = values.function[static_cast<size_t>(a)];

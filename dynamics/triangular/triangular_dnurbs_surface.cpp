@@ -72,7 +72,8 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
     has_stiffness_[static_cast<size_t>(alpha)] = !stiffness[static_cast<size_t>(alpha)].is_zero();
   }
   const int n = surface.basis().degree();
-  const int degree = settings.quadrature_degree > 0 ? settings.quadrature_degree : std::min(2 * n, kMaxDunavantDegree);
+  const int degree = settings.quadrature_degree > 0 ? settings.quadrature_degree
+                                                    : std::min(2 * n, kMaxDunavantDegree);
   const int subdivisions = settings.quadrature_subdivisions;
   // Order 1 is always cached: distributed forces need the tangents.
   quadrature_ = std::make_shared<const TriangularQuadrature>(
@@ -80,10 +81,10 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
 
   // Material values at every quadrature point, checked once --------------------------------
   const std::array<const char*, 6> names = {"", "a10", "a01", "b20", "2 b11", "b02"};
-  material_.assign(static_cast<size_t>(quadrature_->point_count() * kMaterialStride), 0.0);
+  material_.assign(static_cast<size_t>(quadrature_->point_count()) * kMaterialStride, 0.0);
   for (int p = 0; p < quadrature_->point_count(); ++p) {
     const Eigen::Vector2d& u = quadrature_->parameter(p);
-    double* m = &material_[static_cast<size_t>(p * kMaterialStride)];
+    double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
     m[0] = material.mass_density.checked(u, "mass density", true);
     m[1] = material.damping_density.checked(u, "damping density", true);
     for (int alpha = 1; alpha < 6; ++alpha) {
@@ -98,7 +99,7 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   // Coordinates -----------------------------------------------------------------------------
   initial_coordinates_.resize(coordinate_count());
   for (int i = 0; i < count_; ++i) {
-    initial_coordinates_.segment<3>(i * per_control_point_) =
+    initial_coordinates_.segment<3>(static_cast<Eigen::Index>(i) * per_control_point_) =
         surface.control_points().row(i).transpose();
     if (mode_ == WeightMode::kFree) {
       initial_coordinates_[i * 4 + 3] = weights[i];
@@ -132,7 +133,7 @@ std::unique_ptr<Model> TriangularDNurbsSurface::clone() const {
 // ---------------------------------------------------------------------------------------------
 // Points and Jacobians
 
-TriangularControlNet TriangularDNurbsSurface::control_net(ConstVectorRef q) const {
+TriangularControlNet TriangularDNurbsSurface::control_net(const ConstVectorRef& q) const {
   if (q.size() != coordinate_count()) {
     throw make_error("coordinate vector has ", q.size(), " entries, the model has ",
                      coordinate_count());
@@ -169,16 +170,16 @@ void TriangularDNurbsSurface::jacobian_at_point(int p, const TriangularControlNe
   triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
 }
 
-void TriangularDNurbsSurface::jacobian_at(const Eigen::Vector2d& u,
-                                          const TriangularControlNet& net, int order,
-                                          bool weight_columns,
+void TriangularDNurbsSurface::jacobian_at(const Eigen::Vector2d& u, const TriangularControlNet& net,
+                                          int order, bool weight_columns,
                                           TriangularRationalJacobian& jacobian,
                                           TriangularBasisValues& values) const {
   surface_.basis().evaluate(u, order, values);
   triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
 }
 
-Eigen::Vector3d TriangularDNurbsSurface::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
+Eigen::Vector3d TriangularDNurbsSurface::position(ConstVectorRef q,
+                                                  const Eigen::Vector2d& u) const {
   TriangularBasisValues values;
   TriangularRationalJacobian jacobian;
   jacobian_at(u, control_net(q), 0, false, jacobian, values);
@@ -204,9 +205,9 @@ SparseMatrix TriangularDNurbsSurface::position_jacobian(ConstVectorRef q,
       }
     }
   }
-  SparseMatrix L(3, velocity_count());
-  L.setFromTriplets(triplets.begin(), triplets.end());
-  return L;
+  SparseMatrix jacobian_matrix(3, velocity_count());
+  jacobian_matrix.setFromTriplets(triplets.begin(), triplets.end());
+  return jacobian_matrix;
 }
 
 Eigen::Vector3d TriangularDNurbsSurface::jacobian_rate_times_velocity(
@@ -244,7 +245,7 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
   // S_D = integral gamma R_a R_b, S_K = integral sum_alpha k_alpha R_a^alpha R_b^alpha, each
   // a sum over the quadrature points of every domain triangle.
   const int local = pattern_.local_count;
-  const auto local_size = static_cast<size_t>(local * local);
+  const auto local_size = static_cast<size_t>(local) * static_cast<size_t>(local);
   std::vector<double> mass(local_size);
   std::vector<double> damping(local_size);
   std::vector<double> stiffness(local_size);
@@ -263,20 +264,21 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
     for (int p = quadrature_->element_begin(e); p < quadrature_->element_begin(e + 1); ++p) {
       jacobian_at_point(p, net, order, false, jacobian, values, local_index);
       const double weight = quadrature_->weight(p);
-      const double* m = &material_[static_cast<size_t>(p * kMaterialStride)];
-      const auto& R = jacobian.rational;
+      const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
+      const auto& rational = jacobian.rational;
       for (int i = 0; i < values.count; ++i) {
-        const auto row = static_cast<size_t>(local_index[static_cast<size_t>(i)] * local);
+        const auto row =
+            static_cast<size_t>(local_index[static_cast<size_t>(i)]) * static_cast<size_t>(local);
         for (int j = 0; j < values.count; ++j) {
           const size_t index = row + static_cast<size_t>(local_index[static_cast<size_t>(j)]);
           // Products of two basis values first: the element matrices are exactly symmetric.
-          const double product = weight * (R(0, i) * R(0, j));
+          const double product = weight * (rational(0, i) * rational(0, j));
           mass[index] += m[0] * product;
           damping[index] += m[1] * product;
           double k = 0.0;
           for (int alpha = 1; alpha < 6; ++alpha) {
             if (has_stiffness_[static_cast<size_t>(alpha)]) {
-              k += m[1 + alpha] * (R(alpha, i) * R(alpha, j));
+              k += m[1 + alpha] * (rational(alpha, i) * rational(alpha, j));
             }
           }
           stiffness[index] += weight * k;
@@ -288,7 +290,7 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
     const int* to_value = &pattern_.local_to_value[static_cast<size_t>(e) * local_size];
     for (int a = 0; a < element_local; ++a) {
       for (int b = 0; b < element_local; ++b) {
-        const auto i = static_cast<size_t>(a * local + b);
+        const auto i = static_cast<size_t>(a) * static_cast<size_t>(local) + static_cast<size_t>(b);
         scalar.mass.valuePtr()[to_value[i]] += mass[i];
         scalar.stiffness.valuePtr()[to_value[i]] += stiffness[i];
         if (has_damping_) {
@@ -299,10 +301,11 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
   }
 }
 
-void TriangularDNurbsSurface::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const {
+void TriangularDNurbsSurface::assemble_free(const ConstVectorRef& q,
+                                            ModelMatrices& matrices) const {
   // Free weights: 4 x 4 blocks [[R_a R_b I_3, R_a E_b], [E_a^T R_b, E_a . E_b]] per quantity.
   const int local = pattern_.local_count;
-  const auto block_size = static_cast<size_t>(16 * local * local);
+  const auto block_size = 16 * static_cast<size_t>(local) * static_cast<size_t>(local);
   std::vector<double> mass(block_size);
   std::vector<double> damping(block_size);
   std::vector<double> stiffness(block_size);
@@ -331,7 +334,7 @@ void TriangularDNurbsSurface::assemble_free(ConstVectorRef q, ModelMatrices& mat
     for (int p = quadrature_->element_begin(e); p < quadrature_->element_begin(e + 1); ++p) {
       jacobian_at_point(p, net, order, true, jacobian, values, local_index);
       const double weight = quadrature_->weight(p);
-      const double* m = &material_[static_cast<size_t>(p * kMaterialStride)];
+      const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
       std::array<double, 6> coefficient{};
       coefficient[0] = weight * m[0];
       add_free_weight_terms(jacobian, coefficient, values.count, local_index, local, mass);
@@ -379,7 +382,7 @@ void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef for
   std::vector<int> local_index;
   for (int p = 0; p < quadrature_->point_count(); ++p) {
     jacobian_at_point(p, net, order, true, jacobian, values, local_index);
-    const double* m = &material_[static_cast<size_t>(p * kMaterialStride)];
+    const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
     for (int alpha = 1; alpha < 6; ++alpha) {
       if (!has_stiffness_[static_cast<size_t>(alpha)]) {
         continue;
@@ -403,7 +406,7 @@ double TriangularDNurbsSurface::potential_energy(ConstVectorRef q) const {
   double energy = 0.0;
   for (int p = 0; p < quadrature_->point_count(); ++p) {
     jacobian_at_point(p, net, order, false, jacobian, values, local_index);
-    const double* m = &material_[static_cast<size_t>(p * kMaterialStride)];
+    const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
     double density = 0.0;
     for (int alpha = 1; alpha < 6; ++alpha) {
       if (has_stiffness_[static_cast<size_t>(alpha)]) {
@@ -427,7 +430,7 @@ void TriangularDNurbsSurface::add_inertial_force(ConstVectorRef q, ConstVectorRe
   std::vector<int> local_index;
   for (int p = 0; p < quadrature_->point_count(); ++p) {
     jacobian_at_point(p, net, 0, true, jacobian, values, local_index);
-    const double mu = material_[static_cast<size_t>(p * kMaterialStride)] * quadrature_->weight(p);
+    const double mu = material_at(p)[0] * quadrature_->weight(p);
     const Eigen::Vector3d h = mu * free_weight_acceleration(values, jacobian, qd);
     add_transposed_jacobian_times(values, jacobian, 0, true, -h, force);
   }
@@ -457,7 +460,7 @@ void TriangularDNurbsSurface::add_distributed_force(ConstVectorRef q, const Forc
     sample.position = jacobian.point[0];
     sample.tangent_u = jacobian.point[1];
     sample.tangent_v = jacobian.point[2];
-    sample.mass_density = material_[static_cast<size_t>(p * kMaterialStride)];
+    sample.mass_density = material_at(p)[0];
     const Eigen::Vector3d f = quadrature_->weight(p) * density(sample);
     add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
   }
@@ -505,25 +508,26 @@ void TriangularDNurbsSurface::fix_weight(int i) {
   fix_coordinate(weight_offset(i));
 }
 
-Eigen::MatrixX3d TriangularDNurbsSurface::control_points(ConstVectorRef q) const {
+Eigen::MatrixX3d TriangularDNurbsSurface::control_points(const ConstVectorRef& q) const {
   const TriangularControlNet net = control_net(q);
   Eigen::MatrixX3d points(count_, 3);
   for (int i = 0; i < count_; ++i) {
-    points.row(i) = Eigen::Map<const Eigen::RowVector3d>(net.positions + i * per_control_point_);
+    points.row(i) = Eigen::Map<const Eigen::RowVector3d>(
+        net.positions + static_cast<std::ptrdiff_t>(i) * per_control_point_);
   }
   return points;
 }
 
-Eigen::VectorXd TriangularDNurbsSurface::weights(ConstVectorRef q) const {
+Eigen::VectorXd TriangularDNurbsSurface::weights(const ConstVectorRef& q) const {
   const TriangularControlNet net = control_net(q);
   Eigen::VectorXd result(count_);
   for (int i = 0; i < count_; ++i) {
-    result[i] = net.weights[i * net.weight_stride];
+    result[i] = net.weights[static_cast<std::ptrdiff_t>(i) * net.weight_stride];
   }
   return result;
 }
 
-TriangularNurbsSurface TriangularDNurbsSurface::surface(ConstVectorRef q) const {
+TriangularNurbsSurface TriangularDNurbsSurface::surface(const ConstVectorRef& q) const {
   return {surface_.shared_basis(), control_points(q), weights(q)};
 }
 

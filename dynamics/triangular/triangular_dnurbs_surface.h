@@ -105,10 +105,10 @@ class TriangularDNurbsSurface : public Model {
   void fix_control_point(int i);
   void fix_weight(int i);
   /// Control points (count by 3) and weights (count) at q.
-  Eigen::MatrixX3d control_points(ConstVectorRef q) const;
-  Eigen::VectorXd weights(ConstVectorRef q) const;
+  Eigen::MatrixX3d control_points(const ConstVectorRef& q) const;
+  Eigen::VectorXd weights(const ConstVectorRef& q) const;
   /// The triangular NURBS surface at q.
-  TriangularNurbsSurface surface(ConstVectorRef q) const;
+  TriangularNurbsSurface surface(const ConstVectorRef& q) const;
   const TriangularNurbsSurface& initial_surface() const { return surface_; }
   const TriangularQuadrature& quadrature() const { return *quadrature_; }
   /// Area of the parametric domain.
@@ -119,7 +119,10 @@ class TriangularDNurbsSurface : public Model {
   // [+1 + alpha] = k_alpha (alpha = 1..5).
   static constexpr int kMaterialStride = 7;
 
-  TriangularControlNet control_net(ConstVectorRef q) const;
+  TriangularControlNet control_net(const ConstVectorRef& q) const;
+  const double* material_at(int p) const {
+    return &material_[static_cast<size_t>(p) * kMaterialStride];
+  }
   int stiffness_order() const;
   // Evaluates the rational Jacobian at quadrature point p (basis cached).
   void jacobian_at_point(int p, const TriangularControlNet& net, int order, bool weight_columns,
@@ -130,7 +133,7 @@ class TriangularDNurbsSurface : public Model {
                    bool weight_columns, TriangularRationalJacobian& jacobian,
                    TriangularBasisValues& values) const;
   void assemble_scalar(ModelMatrices& scalar) const;
-  void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const;
+  void assemble_free(const ConstVectorRef& q, ModelMatrices& matrices) const;
 
   TriangularNurbsSurface surface_;
   std::shared_ptr<const TriangularQuadrature> quadrature_;  // immutable, shared by clones

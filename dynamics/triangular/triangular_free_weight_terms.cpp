@@ -42,20 +42,21 @@ void add_free_weight_terms(const TriangularRationalJacobian& jacobian,
     if (c == 0.0) {
       continue;
     }
-    const auto& E = jacobian.weight_column[static_cast<size_t>(alpha)];
+    const auto& columns = jacobian.weight_column[static_cast<size_t>(alpha)];
     for (int i = 0; i < count; ++i) {
-      const double Ri = jacobian.rational(alpha, i);
-      double* row = block.data() + static_cast<size_t>(4 * local[static_cast<size_t>(i)] * size);
+      const double ri = jacobian.rational(alpha, i);
+      const int first_row = 4 * local[static_cast<size_t>(i)] * size;
+      double* row = block.data() + first_row;
       for (int j = 0; j < count; ++j) {
-        const double Rj = jacobian.rational(alpha, j);
+        const double rj = jacobian.rational(alpha, j);
         const int column = 4 * local[static_cast<size_t>(j)];
-        const double s = c * (Ri * Rj);
+        const double s = c * (ri * rj);
         for (int r = 0; r < 3; ++r) {
           row[r * size + column + r] += s;
-          row[r * size + column + 3] += c * (Ri * E(r, j));
-          row[3 * size + column + r] += c * (E(r, i) * Rj);
+          row[r * size + column + 3] += c * (ri * columns(r, j));
+          row[3 * size + column + r] += c * (columns(r, i) * rj);
         }
-        row[3 * size + column + 3] += c * E.col(i).dot(E.col(j));
+        row[3 * size + column + 3] += c * columns.col(i).dot(columns.col(j));
       }
     }
   }
@@ -68,14 +69,17 @@ void scatter_free_weight_block(const AssemblyPattern& pattern, const SparseMatri
   const int size = 4 * local;
   const int* to_value =
       &pattern.local_to_value[static_cast<size_t>(element) * static_cast<size_t>(local * local)];
-  const int* nodes = &pattern.element_nodes[static_cast<size_t>(element * local)];
+  const int* nodes =
+      &pattern.element_nodes[static_cast<size_t>(element) * static_cast<size_t>(local)];
   for (int a = 0; a < element_local; ++a) {
     for (int b = 0; b < element_local; ++b) {
       const int s = to_value[a * local + b];
       for (int r = 0; r < 4; ++r) {
         for (int c = 0; c < 4; ++c) {
-          const int index = dense_block_value_index(block_pattern, pattern.scalar, s, nodes[b], r, c, 4);
-          matrix.valuePtr()[index] += block[static_cast<size_t>((4 * a + r) * size + 4 * b + c)];
+          const int index =
+              dense_block_value_index(block_pattern, pattern.scalar, s, nodes[b], r, c, 4);
+          const int entry = (4 * a + r) * size + 4 * b + c;
+          matrix.valuePtr()[index] += block[static_cast<size_t>(entry)];
         }
       }
     }

@@ -45,8 +45,8 @@ TriangularQuadrature::TriangularQuadrature(std::shared_ptr<const TriangularBSpli
     // polynomial cells (each convex cell split from its first corner).
     std::vector<std::array<Eigen::Vector2d, 3>> pieces;
     if (subdivisions > 0) {
-      pieces.push_back({triangulation.corner(e, 0), triangulation.corner(e, 1),
-                        triangulation.corner(e, 2)});
+      pieces.push_back(
+          {triangulation.corner(e, 0), triangulation.corner(e, 1), triangulation.corner(e, 2)});
     } else {
       for (const ConvexPolygon& cell : polynomial_cells(*basis_, e)) {
         for (size_t k = 1; k + 1 < cell.size(); ++k) {
@@ -58,8 +58,9 @@ TriangularQuadrature::TriangularQuadrature(std::shared_ptr<const TriangularBSpli
     for (const auto& piece : pieces) {
       const double area = 0.5 * signed_double_area(piece[0], piece[1], piece[2]);
       for (int g = 0; g < used.point_count(); ++g) {
-        add_point(e, used.barycentric(g, 0) * piece[0] + used.barycentric(g, 1) * piece[1] +
-                         used.barycentric(g, 2) * piece[2],
+        add_point(e,
+                  used.barycentric(g, 0) * piece[0] + used.barycentric(g, 1) * piece[1] +
+                      used.barycentric(g, 2) * piece[2],
                   area * used.weights[g], values);
       }
     }
@@ -97,18 +98,18 @@ void TriangularQuadrature::basis_at(int point, TriangularBasisValues& values,
   local.resize(static_cast<size_t>(values.count));
   values.value.resize(6, values.count);
   for (int k = 0; k < values.count; ++k) {
-    const int a = entry_local_[static_cast<size_t>(begin + k)];
+    const auto entry = static_cast<size_t>(begin) + static_cast<size_t>(k);
+    const int a = entry_local_[entry];
     local[static_cast<size_t>(k)] = a;
     values.function[static_cast<size_t>(k)] = functions[static_cast<size_t>(a)];
-    values.value.col(k) =
-        Eigen::Map<const Eigen::Matrix<double, 6, 1>>(&entry_value_[static_cast<size_t>(6 * (begin + k))]);
+    values.value.col(k) = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(&entry_value_[6 * entry]);
   }
 }
 
 AssemblyPattern TriangularQuadrature::assembly_pattern() const {
   const int local = max_local_count_;
   std::vector<int> element_nodes;
-  element_nodes.reserve(static_cast<size_t>(element_count() * local));
+  element_nodes.reserve(static_cast<size_t>(element_count()) * static_cast<size_t>(local));
   for (const auto& functions : element_functions_) {
     for (int a = 0; a < local; ++a) {
       element_nodes.push_back(a < static_cast<int>(functions.size())

@@ -50,7 +50,9 @@ class TriangularQuadrature {
   /// Points of element e (domain triangle e) are element_begin(e) .. element_begin(e + 1) - 1.
   int element_begin(int e) const { return element_begin_[static_cast<size_t>(e)]; }
   /// Parameter and weight (rule weight times sub-triangle area) of a point.
-  const Eigen::Vector2d& parameter(int point) const { return parameter_[static_cast<size_t>(point)]; }
+  const Eigen::Vector2d& parameter(int point) const {
+    return parameter_[static_cast<size_t>(point)];
+  }
   double weight(int point) const { return weight_[static_cast<size_t>(point)]; }
   /// The domain triangle of a point.
   int element_of(int point) const { return element_of_[static_cast<size_t>(point)]; }

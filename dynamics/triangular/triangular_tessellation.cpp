@@ -98,6 +98,139 @@ int opposite_corner(const std::array<int, 3>& corner, int a, int b) {
   throw make_error("mesh triangle has no corner opposite (", a, ", ", b, ")");
 }
 
+// A conforming triangle mesh of the domain refined by longest-edge bisection (Rivara 1984):
+// a triangle is bisected only together with the neighbour across its longest edge once that
+// edge is the neighbour's longest too, so no vertex ever hangs on an edge.
+class BisectionMesh {
+ public:
+  explicit BisectionMesh(const TriangularNurbsSurface& surface)
+      : surface_(surface), builder_(surface) {
+    const Triangulation& triangulation = surface.basis().triangulation();
+    for (int v = 0; v < triangulation.vertex_count(); ++v) {
+      builder_.add_vertex(triangulation.vertex_triangles(v).front(), triangulation.vertex(v));
+    }
+    for (int t = 0; t < triangulation.triangle_count(); ++t) {
+      add({triangulation.triangles()(t, 0), triangulation.triangles()(t, 1),
+           triangulation.triangles()(t, 2)},
+          t, 0);
+    }
+  }
+
+  int triangle_count() const { return static_cast<int>(corners_.size()); }
+  bool alive(int id) const { return alive_[static_cast<size_t>(id)]; }
+  int level(int id) const { return level_[static_cast<size_t>(id)]; }
+  double chord_error(int id) const {
+    return dnurbs::chord_error(surface_, builder_, domain_[static_cast<size_t>(id)],
+                               corners_[static_cast<size_t>(id)]);
+  }
+
+  // Longest-edge propagation: refine the neighbour across the longest edge first until the two
+  // share their longest edge, then bisect both. New triangles are appended to `created`.
+  void refine(int start, std::vector<int>& created) {
+    std::vector<int> path = {start};
+    while (!path.empty()) {
+      const int id = path.back();
+      if (!alive(id)) {
+        path.pop_back();
+        continue;
+      }
+      const int e = longest(id);
+      const auto& c = corners_[static_cast<size_t>(id)];
+      const int a = c[static_cast<size_t>((e + 1) % 3)];
+      const int b = c[static_cast<size_t>((e + 2) % 3)];
+      const auto across = owner_.find(edge_key(b, a));
+      const int other = across == owner_.end() ? -1 : across->second;
+      const int f = other < 0 ? -1 : opposite_corner(corners_[static_cast<size_t>(other)], a, b);
+      if (other >= 0 && longest(other) != f) {
+        path.push_back(other);
+        continue;
+      }
+      for (const int child : bisect(id, e)) {
+        created.push_back(child);
+      }
+      if (other >= 0) {
+        for (const int child : bisect(other, f)) {
+          created.push_back(child);
+        }
+      }
+      path.pop_back();
+    }
+  }
+
+  TriangleMesh mesh(std::string name) const {
+    std::vector<std::array<int, 3>> triangles;
+    for (size_t id = 0; id < corners_.size(); ++id) {
+      if (alive_[id]) {
+        triangles.push_back(corners_[id]);
+      }
+    }
+    return builder_.mesh(triangles, std::move(name));
+  }
+
+ private:
+  int add(const std::array<int, 3>& c, int t, int l) {
+    const int id = static_cast<int>(corners_.size());
+    corners_.push_back(c);
+    domain_.push_back(t);
+    level_.push_back(l);
+    alive_.push_back(true);
+    for (int e = 0; e < 3; ++e) {
+      owner_[edge_key(c[static_cast<size_t>(e)], c[static_cast<size_t>((e + 1) % 3)])] = id;
+    }
+    return id;
+  }
+
+  // The corner opposite the longest edge (a strict order: length, then the vertex indices, so
+  // that both triangles of an edge agree).
+  int longest(int id) const {
+    const auto& c = corners_[static_cast<size_t>(id)];
+    auto key = [&](int e) {
+      const int a = c[static_cast<size_t>((e + 1) % 3)];
+      const int b = c[static_cast<size_t>((e + 2) % 3)];
+      return std::make_tuple((builder_.parameter(a) - builder_.parameter(b)).squaredNorm(),
+                             std::min(a, b), std::max(a, b));
+    };
+    int best = 0;
+    for (int e = 1; e < 3; ++e) {
+      if (key(e) > key(best)) {
+        best = e;
+      }
+    }
+    return best;
+  }
+
+  // Bisects triangle id across the edge opposite corner e (the midpoint shared with the
+  // neighbour); returns the two children.
+  std::array<int, 2> bisect(int id, int e) {
+    const auto c = corners_[static_cast<size_t>(id)];
+    const int apex = c[static_cast<size_t>(e)];
+    const int a = c[static_cast<size_t>((e + 1) % 3)];
+    const int b = c[static_cast<size_t>((e + 2) % 3)];
+    const int t = domain_[static_cast<size_t>(id)];
+    const auto key = edge_key(std::min(a, b), std::max(a, b));
+    auto found = midpoint_.find(key);
+    if (found == midpoint_.end()) {
+      const Eigen::Vector2d u = 0.5 * (builder_.parameter(a) + builder_.parameter(b));
+      found = midpoint_.emplace(key, builder_.add_vertex(t, u)).first;
+    }
+    const int m = found->second;
+    alive_[static_cast<size_t>(id)] = false;
+    owner_.erase(edge_key(a, b));
+    const int l = level(id) + 1;
+    return {add({apex, a, m}, t, l), add({apex, m, b}, t, l)};
+  }
+
+  const TriangularNurbsSurface& surface_;
+  MeshBuilder builder_;
+  // Per mesh triangle: corners, domain triangle, bisection level, alive.
+  std::vector<std::array<int, 3>> corners_;
+  std::vector<int> domain_;
+  std::vector<int> level_;
+  std::vector<bool> alive_;
+  std::unordered_map<std::uint64_t, int> owner_;     // directed edge -> its triangle
+  std::unordered_map<std::uint64_t, int> midpoint_;  // undirected edge -> its midpoint vertex
+};
+
 }  // namespace
 
 TriangleMesh tessellate_triangular_surface(const TriangularNurbsSurface& surface, int subdivisions,
@@ -136,9 +269,10 @@ TriangleMesh tessellate_triangular_surface(const TriangularNurbsSurface& surface
     if (found != index.end()) {
       return found->second;
     }
-    const Eigen::Vector2d u = (l[0] * triangulation.corner(t, 0) + l[1] * triangulation.corner(t, 1) +
-                               l[2] * triangulation.corner(t, 2)) /
-                              static_cast<double>(s);
+    const Eigen::Vector2d u =
+        (l[0] * triangulation.corner(t, 0) + l[1] * triangulation.corner(t, 1) +
+         l[2] * triangulation.corner(t, 2)) /
+        static_cast<double>(s);
     const int v = builder.add_vertex(t, u);
     index.emplace(key, v);
     return v;
@@ -166,126 +300,25 @@ TriangleMesh tessellate_triangular_surface_adaptive(const TriangularNurbsSurface
   if (max_level < 1 || max_level > 40) {
     throw make_error("adaptive tessellation level ", max_level, " is outside 1..40");
   }
-  const Triangulation& triangulation = surface.basis().triangulation();
-  MeshBuilder builder(surface);
-  for (int v = 0; v < triangulation.vertex_count(); ++v) {
-    builder.add_vertex(triangulation.vertex_triangles(v).front(), triangulation.vertex(v));
-  }
-  // Mesh triangles: corners, domain triangle, bisection level, alive; directed edge -> owner.
-  std::vector<std::array<int, 3>> corners;
-  std::vector<int> domain;
-  std::vector<int> level;
-  std::vector<bool> alive;
-  std::unordered_map<std::uint64_t, int> owner;
-  auto add = [&](const std::array<int, 3>& c, int t, int l) {
-    const int id = static_cast<int>(corners.size());
-    corners.push_back(c);
-    domain.push_back(t);
-    level.push_back(l);
-    alive.push_back(true);
-    for (int e = 0; e < 3; ++e) {
-      owner[edge_key(c[static_cast<size_t>(e)], c[static_cast<size_t>((e + 1) % 3)])] = id;
-    }
-    return id;
-  };
-  for (int t = 0; t < triangulation.triangle_count(); ++t) {
-    add({triangulation.triangles()(t, 0), triangulation.triangles()(t, 1),
-         triangulation.triangles()(t, 2)},
-        t, 0);
-  }
-  // Longest edge (a strict order: length, then the vertex indices) as the corner opposite it.
-  auto longest = [&](int id) {
-    const auto& c = corners[static_cast<size_t>(id)];
-    auto key = [&](int e) {
-      const int a = c[static_cast<size_t>((e + 1) % 3)];
-      const int b = c[static_cast<size_t>((e + 2) % 3)];
-      return std::make_tuple((builder.parameter(a) - builder.parameter(b)).squaredNorm(),
-                             std::min(a, b), std::max(a, b));
-    };
-    int best = 0;
-    for (int e = 1; e < 3; ++e) {
-      if (key(e) > key(best)) {
-        best = e;
-      }
-    }
-    return best;
-  };
-  std::unordered_map<std::uint64_t, int> midpoint;
-  // Bisects triangle id across the edge opposite corner e (midpoint shared with the neighbour).
-  auto bisect = [&](int id, int e) {
-    const auto c = corners[static_cast<size_t>(id)];
-    const int apex = c[static_cast<size_t>(e)];
-    const int a = c[static_cast<size_t>((e + 1) % 3)];
-    const int b = c[static_cast<size_t>((e + 2) % 3)];
-    const auto key = edge_key(std::min(a, b), std::max(a, b));
-    auto found = midpoint.find(key);
-    if (found == midpoint.end()) {
-      const Eigen::Vector2d u = 0.5 * (builder.parameter(a) + builder.parameter(b));
-      found = midpoint.emplace(key, builder.add_vertex(domain[static_cast<size_t>(id)], u)).first;
-    }
-    const int m = found->second;
-    alive[static_cast<size_t>(id)] = false;
-    owner.erase(edge_key(a, b));
-    const int t = domain[static_cast<size_t>(id)];
-    const int l = level[static_cast<size_t>(id)] + 1;
-    return std::array<int, 2>{add({apex, a, m}, t, l), add({apex, m, b}, t, l)};
-  };
-  // Longest-edge propagation: refine the neighbour across the longest edge first until the
-  // two share their longest edge, then bisect both.
-  std::vector<int> created;
-  auto refine = [&](int start) {
-    std::vector<int> path = {start};
-    while (!path.empty()) {
-      const int id = path.back();
-      if (!alive[static_cast<size_t>(id)]) {
-        path.pop_back();
-        continue;
-      }
-      const int e = longest(id);
-      const auto& c = corners[static_cast<size_t>(id)];
-      const int a = c[static_cast<size_t>((e + 1) % 3)];
-      const int b = c[static_cast<size_t>((e + 2) % 3)];
-      const auto across = owner.find(edge_key(b, a));
-      const int other = across == owner.end() ? -1 : across->second;
-      const int f = other < 0 ? -1 : opposite_corner(corners[static_cast<size_t>(other)], a, b);
-      if (other >= 0 && longest(other) != f) {
-        path.push_back(other);
-        continue;
-      }
-      for (const int child : bisect(id, e)) {
-        created.push_back(child);
-      }
-      if (other >= 0) {
-        for (const int child : bisect(other, f)) {
-          created.push_back(child);
-        }
-      }
-      path.pop_back();
-    }
-  };
-  std::vector<int> queue(corners.size());
+  BisectionMesh mesh(surface);
+  // Refine every triangle above the error bound (and below the level bound), then its
+  // children, until none is left.
+  std::vector<int> queue(static_cast<size_t>(mesh.triangle_count()));
   for (size_t k = 0; k < queue.size(); ++k) {
     queue[k] = static_cast<int>(k);
   }
+  std::vector<int> created;
   while (!queue.empty()) {
     const int id = queue.back();
     queue.pop_back();
-    if (!alive[static_cast<size_t>(id)] || level[static_cast<size_t>(id)] >= max_level ||
-        chord_error(surface, builder, domain[static_cast<size_t>(id)],
-                    corners[static_cast<size_t>(id)]) <= max_error) {
+    if (!mesh.alive(id) || mesh.level(id) >= max_level || mesh.chord_error(id) <= max_error) {
       continue;
     }
     created.clear();
-    refine(id);
+    mesh.refine(id, created);
     queue.insert(queue.end(), created.begin(), created.end());
   }
-  std::vector<std::array<int, 3>> triangles;
-  for (size_t id = 0; id < corners.size(); ++id) {
-    if (alive[id]) {
-      triangles.push_back(corners[id]);
-    }
-  }
-  return builder.mesh(triangles, std::move(name));
+  return mesh.mesh(std::move(name));
 }
 
 double triangular_chord_error(const TriangularNurbsSurface& surface, const TriangleMesh& mesh,
@@ -316,8 +349,9 @@ double triangular_chord_error(const TriangularNurbsSurface& surface, const Trian
   return error;
 }
 
-TriangleMesh tessellate_triangular_model(const TriangularDNurbsSurface& model, ConstVectorRef q,
-                                         int subdivisions, double max_error, std::string name) {
+TriangleMesh tessellate_triangular_model(const TriangularDNurbsSurface& model,
+                                         const ConstVectorRef& q, int subdivisions,
+                                         double max_error, std::string name) {
   const TriangularNurbsSurface surface = model.surface(q);
   if (max_error > 0.0) {
     return tessellate_triangular_surface_adaptive(surface, max_error, 20, std::move(name));

@@ -35,8 +35,9 @@ double triangular_chord_error(const TriangularNurbsSurface& surface, const Trian
                               int samples = 4);
 
 /// The model's surface at q, uniformly (max_error <= 0) or adaptively tessellated.
-TriangleMesh tessellate_triangular_model(const TriangularDNurbsSurface& model, ConstVectorRef q,
-                                         int subdivisions, double max_error = 0.0,
+TriangleMesh tessellate_triangular_model(const TriangularDNurbsSurface& model,
+                                         const ConstVectorRef& q, int subdivisions,
+                                         double max_error = 0.0,
                                          std::string name = "triangular_dnurbs_surface");
 
 }  // namespace dnurbs

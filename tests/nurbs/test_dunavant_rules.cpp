@@ -31,7 +31,8 @@ double monomial_error(const TriangleRule& rule, int degree, bool cumulative) {
       const int j = total - i;
       double sum = 0.0;
       for (int g = 0; g < rule.point_count(); ++g) {
-        sum += rule.weights[g] * std::pow(rule.barycentric(g, 1), i) * std::pow(rule.barycentric(g, 2), j);
+        sum += rule.weights[g] * std::pow(rule.barycentric(g, 1), i) *
+               std::pow(rule.barycentric(g, 2), j);
       }
       worst = std::max(worst, std::abs(sum - exact_mean(i, j)));
     }

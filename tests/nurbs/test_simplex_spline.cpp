@@ -114,9 +114,11 @@ TEST(SimplexSplineRecurrence, DerivativesMatchCentralDifferences) {
       const Eigen::Vector2d u(x(random), y(random));
       const auto d = evaluate_one(set, u, 2);
       const Eigen::Matrix<double, 6, 1> du = (evaluate_one(set, u + Eigen::Vector2d(h, 0), 2) -
-                       evaluate_one(set, u - Eigen::Vector2d(h, 0), 2)) / (2 * h);
+                                              evaluate_one(set, u - Eigen::Vector2d(h, 0), 2)) /
+                                             (2 * h);
       const Eigen::Matrix<double, 6, 1> dv = (evaluate_one(set, u + Eigen::Vector2d(0, h), 2) -
-                       evaluate_one(set, u - Eigen::Vector2d(0, h), 2)) / (2 * h);
+                                              evaluate_one(set, u - Eigen::Vector2d(0, h), 2)) /
+                                             (2 * h);
       // Truncation h^2 |D^3 M| ~ 1e-11 and rounding 1e-16 |M| / h ~ 1e-10 (|M| <= ~1).
       const double tolerance = 1e-7 * (1.0 + d.cwiseAbs().maxCoeff());
       EXPECT_NEAR(du[0], d[1], tolerance) << "degree " << count - 3;
@@ -145,8 +147,8 @@ TEST(SimplexSplineNormalization, IntegralIsOneOverMPlusOneTimesMPlusTwo) {
     std::vector<double> scratch;
     double integral = 0.0;
     for (int g = 0; g < rule.point_count(); ++g) {
-      const Eigen::Vector2d u = rule.barycentric(g, 0) * a + rule.barycentric(g, 1) * b +
-                                rule.barycentric(g, 2) * c;
+      const Eigen::Vector2d u =
+          rule.barycentric(g, 0) * a + rule.barycentric(g, 1) * b + rule.barycentric(g, 2) * c;
       set.evaluate(u, Eigen::Vector2d(0.8, 0.6), 1e-13, 0, result, scratch);
       integral += area * rule.weights[g] * result(0, 0);
     }

@@ -25,7 +25,8 @@ std::vector<Eigen::Vector2d> sample_points(const Triangulation& triangulation, i
   const Eigen::Vector2d hi = triangulation.vertices().colwise().maxCoeff().transpose();
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   while (static_cast<int>(points.size()) < random_count) {
-    const Eigen::Vector2d u = lo + (hi - lo).cwiseProduct(Eigen::Vector2d(unit(random), unit(random)));
+    const Eigen::Vector2d u =
+        lo + (hi - lo).cwiseProduct(Eigen::Vector2d(unit(random), unit(random)));
     if (triangulation.locate(u) >= 0) {
       points.push_back(u);
     }
@@ -89,6 +90,7 @@ TEST(TriangularBSplineBasis, ReproducesEveryPolynomialOfDegreeAtMostN) {
     for (int n = 1; n <= 4; ++n) {
       const TriangularBSplineBasis basis(triangulation, standard_knot_clouds(triangulation, n));
       std::vector<Eigen::MatrixX2d> arguments;
+      arguments.reserve(static_cast<size_t>(basis.function_count()));
       for (int f = 0; f < basis.function_count(); ++f) {
         arguments.push_back(basis.blossom_arguments(f));
       }
@@ -103,7 +105,8 @@ TEST(TriangularBSplineBasis, ReproducesEveryPolynomialOfDegreeAtMostN) {
             Eigen::Matrix<double, 6, 1> sum = Eigen::Matrix<double, 6, 1>::Zero();
             double coefficient_size = 1.0;
             for (int k = 0; k < values.count; ++k) {
-              const auto& knots = arguments[static_cast<size_t>(values.function[static_cast<size_t>(k)])];
+              const auto& knots =
+                  arguments[static_cast<size_t>(values.function[static_cast<size_t>(k)])];
               const double coefficient = test::monomial_blossom(a, b, knots);
               coefficient_size = std::max(coefficient_size, std::abs(coefficient));
               sum += coefficient * values.value.col(k);
@@ -115,8 +118,10 @@ TEST(TriangularBSplineBasis, ReproducesEveryPolynomialOfDegreeAtMostN) {
             Eigen::Matrix<double, 6, 1> exact;
             exact << power(x, a) * power(y, b), a * power(x, a - 1) * power(y, b),
                 b * power(x, a) * power(y, b - 1), a * (a - 1) * power(x, a - 2) * power(y, b),
-                a * b * power(x, a - 1) * power(y, b - 1), b * (b - 1) * power(x, a) * power(y, b - 2);
-            value_error = std::max(value_error, std::abs(sum[0] - exact[0]) / (1.0 + std::abs(exact[0])));
+                a * b * power(x, a - 1) * power(y, b - 1),
+                b * (b - 1) * power(x, a) * power(y, b - 2);
+            value_error =
+                std::max(value_error, std::abs(sum[0] - exact[0]) / (1.0 + std::abs(exact[0])));
             derivative_error =
                 std::max(derivative_error, (sum - exact).tail<5>().cwiseAbs().maxCoeff() /
                                                (coefficient_size * derivative_scale));
@@ -158,12 +163,14 @@ TEST(TriangularBSplineBasis, IsCnMinusOneAcrossInteriorEdgesAndKnotSegments) {
       std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> lines;
       for (int e = 0; e < 3; ++e) {
         if (triangulation.neighbor(t, e) >= 0) {
-          lines.emplace_back(triangulation.corner(t, (e + 1) % 3), triangulation.corner(t, (e + 2) % 3));
+          lines.emplace_back(triangulation.corner(t, (e + 1) % 3),
+                             triangulation.corner(t, (e + 2) % 3));
         }
       }
       const Eigen::MatrixX4d segments = knot_segments_in_triangle(basis, t);
       for (Eigen::Index k = 0; k < segments.rows(); ++k) {
-        lines.emplace_back(segments.row(k).head<2>().transpose(), segments.row(k).tail<2>().transpose());
+        lines.emplace_back(segments.row(k).head<2>().transpose(),
+                           segments.row(k).tail<2>().transpose());
       }
       for (const auto& [p, q] : lines) {
         const Eigen::Vector2d normal = Eigen::Vector2d(q.y() - p.y(), p.x() - q.x()).normalized();
@@ -207,14 +214,16 @@ TEST(TriangularBSplineBasis, DerivativesMatchCentralDifferences) {
         const Eigen::Matrix<double, 6, Eigen::Dynamic> difference =
             (shifted_plus.value - shifted_minus.value) / (2 * h);
         // d/du of (N, N_u, N_v) is (N_u, N_uu, N_uv); d/dv is (N_v, N_uv, N_vv).
-        const std::array<int, 3> target = direction == 0 ? std::array<int, 3>{1, 3, 4}
-                                                         : std::array<int, 3>{2, 4, 5};
+        const std::array<int, 3> target =
+            direction == 0 ? std::array<int, 3>{1, 3, 4} : std::array<int, 3>{2, 4, 5};
         for (int r = 0; r < 3; ++r) {
-          const double scale = 1.0 + values.value.row(target[static_cast<size_t>(r)]).cwiseAbs().maxCoeff();
-          worst = std::max(worst, (difference.row(r) - values.value.row(target[static_cast<size_t>(r)]))
-                                          .cwiseAbs()
-                                          .maxCoeff() /
-                                      scale);
+          const double scale =
+              1.0 + values.value.row(target[static_cast<size_t>(r)]).cwiseAbs().maxCoeff();
+          worst =
+              std::max(worst, (difference.row(r) - values.value.row(target[static_cast<size_t>(r)]))
+                                      .cwiseAbs()
+                                      .maxCoeff() /
+                                  scale);
         }
       }
     }
@@ -244,8 +253,9 @@ TEST(TriangularBSplineBasis, SupportsAndNumberingFollowTheKnotSets) {
     basis.evaluate(u, 0, values);
     for (int k = 0; k < values.count; ++k) {
       const Eigen::MatrixX2d knots = basis.knot_set(values.function[static_cast<size_t>(k)]);
-      const bool in_box = (u.transpose().array() >= knots.colwise().minCoeff().array() - 1e-12).all() &&
-                          (u.transpose().array() <= knots.colwise().maxCoeff().array() + 1e-12).all();
+      const bool in_box =
+          (u.transpose().array() >= knots.colwise().minCoeff().array() - 1e-12).all() &&
+          (u.transpose().array() <= knots.colwise().maxCoeff().array() + 1e-12).all();
       if (!in_box) {
         EXPECT_EQ(values.value(0, k), 0.0);
       }

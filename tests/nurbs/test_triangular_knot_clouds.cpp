@@ -77,12 +77,14 @@ TEST(KnotCloudChecks, EachViolatedConditionNamesTheKnot) {
   // Condition 5: three knots of one cloud on a line.
   const Eigen::Vector2d t1 = good.knot(center, 1);
   const Eigen::Vector2d on_line = square.vertex(center) + 0.5 * (t1 - square.vertex(center));
-  EXPECT_NE(error_message([&] { check_knot_clouds(square, with_knot(center, 2, on_line)); })
-                .find("collinear"),
+  EXPECT_NE(error_message([&] {
+              check_knot_clouds(square, with_knot(center, 2, on_line));
+            }).find("collinear"),
             std::string::npos);
   // Condition 1 and sizes, at construction.
-  EXPECT_NE(error_message([&] { with_knot(center, 0, Eigen::Vector2d(0.5, 0.51)); })
-                .find("must be vertex 4"),
+  EXPECT_NE(error_message([&] {
+              with_knot(center, 0, Eigen::Vector2d(0.5, 0.51));
+            }).find("must be vertex 4"),
             std::string::npos);
   EXPECT_THROW(TriangularKnotClouds(square, n, Eigen::MatrixX2d::Zero(5, 2)), Error);
   EXPECT_THROW(TriangularKnotClouds(square, 0, square.vertices()), Error);
@@ -100,8 +102,9 @@ TEST(KnotCloudChecks, EachViolatedConditionNamesTheKnot) {
           square.vertex(i).transpose() + 10.0 * (good.knot(i, b) - square.vertex(i)).transpose();
     }
   }
-  EXPECT_NE(error_message([&] { check_knot_clouds(square, TriangularKnotClouds(square, n, large)); })
-                .find("DMS condition"),
+  EXPECT_NE(error_message([&] {
+              check_knot_clouds(square, TriangularKnotClouds(square, n, large));
+            }).find("DMS condition"),
             std::string::npos);
 }
 

@@ -49,7 +49,8 @@ TEST(TriangularNurbsSurface, FlatSurfaceIsTheIdentityAndWeightsScaleOut) {
     EXPECT_LT((d[0] - Eigen::Vector3d(u.x(), u.y(), 0.0)).norm(), 1e-14);
     EXPECT_LT((d[1] - Eigen::Vector3d::UnitX()).norm(), 1e-12);
     EXPECT_LT((d[2] - Eigen::Vector3d::UnitY()).norm(), 1e-12);
-    EXPECT_LT(d[3].norm() + d[4].norm() + d[5].norm(), 1e-10);  // second derivatives ~1/r^2 round-off
+    EXPECT_LT(d[3].norm() + d[4].norm() + d[5].norm(),
+              1e-10);  // second derivatives ~1/r^2 round-off
     EXPECT_LT((flat.unit_normal(u) - Eigen::Vector3d::UnitZ()).norm(), 1e-14);
   }
   // Multiplying every weight by one factor leaves a rational surface unchanged.
@@ -60,7 +61,8 @@ TEST(TriangularNurbsSurface, FlatSurfaceIsTheIdentityAndWeightsScaleOut) {
     const auto a = curved.derivatives(u, 2);
     const auto b = scaled.derivatives(u, 2);
     for (int q = 0; q < 6; ++q) {
-      EXPECT_LT((a[static_cast<size_t>(q)] - b[static_cast<size_t>(q)]).norm(), 1e-12 * (1.0 + a[static_cast<size_t>(q)].norm()));
+      EXPECT_LT((a[static_cast<size_t>(q)] - b[static_cast<size_t>(q)]).norm(),
+                1e-12 * (1.0 + a[static_cast<size_t>(q)].norm()));
     }
   }
 }
@@ -101,11 +103,13 @@ TEST(TriangularNurbsSurface, JacobianWithRespectToControlPointsAndWeightsMatches
       // d x^alpha / d P_a = R(alpha, a) I_3 (the surface is linear in P: exact differences).
       Eigen::MatrixX3d moved = surface.control_points();
       moved(f, 2) += 1.0;
-      const auto shifted = TriangularNurbsSurface(basis, moved, surface.weights()).derivatives(u, 2);
+      const auto shifted =
+          TriangularNurbsSurface(basis, moved, surface.weights()).derivatives(u, 2);
       const auto base = surface.derivatives(u, 2);
       for (int alpha = 0; alpha < 6; ++alpha) {
         const auto k = static_cast<size_t>(alpha);
-        EXPECT_NEAR(shifted[k].z() - base[k].z(), jacobian.rational(alpha, a), 1e-10 * (1.0 + std::abs(jacobian.rational(alpha, a))));
+        EXPECT_NEAR(shifted[k].z() - base[k].z(), jacobian.rational(alpha, a),
+                    1e-10 * (1.0 + std::abs(jacobian.rational(alpha, a))));
         EXPECT_LT((jacobian.point[k] - base[k]).norm(), 1e-12 * (1.0 + base[k].norm()));
       }
       // d x^alpha / d w_a = E^alpha_a by central differences in the weight.
@@ -113,13 +117,16 @@ TEST(TriangularNurbsSurface, JacobianWithRespectToControlPointsAndWeightsMatches
       Eigen::VectorXd minus = surface.weights();
       plus[f] += h;
       minus[f] -= h;
-      const auto xp = TriangularNurbsSurface(basis, surface.control_points(), plus).derivatives(u, 2);
-      const auto xm = TriangularNurbsSurface(basis, surface.control_points(), minus).derivatives(u, 2);
+      const auto xp =
+          TriangularNurbsSurface(basis, surface.control_points(), plus).derivatives(u, 2);
+      const auto xm =
+          TriangularNurbsSurface(basis, surface.control_points(), minus).derivatives(u, 2);
       for (int alpha = 0; alpha < 6; ++alpha) {
         const auto k = static_cast<size_t>(alpha);
         const Eigen::Vector3d difference = (xp[k] - xm[k]) / (2 * h);
         // Truncation h^2 and rounding 1e-16 |x^alpha| / h with |x^alpha| up to ~100.
-        EXPECT_LT((difference - jacobian.weight_column[k].col(a)).norm(), 1e-6 * (1.0 + base[k].norm()))
+        EXPECT_LT((difference - jacobian.weight_column[k].col(a)).norm(),
+                  1e-6 * (1.0 + base[k].norm()))
             << "alpha " << alpha;
       }
     }

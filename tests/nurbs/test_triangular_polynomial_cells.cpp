@@ -3,8 +3,8 @@
 
 #include "nurbs/triangular_polynomial_cells.h"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/error.h"
 #include "nurbs/dunavant_rules.h"
@@ -39,8 +39,9 @@ TEST(PolynomialCells, TileTheTriangleAndNoKnotSegmentCrossesThem) {
         total += area_of(cell);
         // Convex and counter-clockwise.
         for (size_t k = 0; k < cell.size(); ++k) {
-          EXPECT_GE(signed_double_area(cell[k], cell[(k + 1) % cell.size()], cell[(k + 2) % cell.size()]),
-                    -1e-15);
+          EXPECT_GE(
+              signed_double_area(cell[k], cell[(k + 1) % cell.size()], cell[(k + 2) % cell.size()]),
+              -1e-15);
         }
         // No knot segment passes through the cell's interior: the part of the segment at
         // least 1e-9 inside every edge of the cell is empty.
@@ -71,9 +72,10 @@ TEST(PolynomialCells, TileTheTriangleAndNoKnotSegmentCrossesThem) {
     }
     EXPECT_GT(segment_count, triangulation.triangle_count());  // the test sees segments
   }
-  EXPECT_THROW(knot_segments_in_triangle(
-                   TriangularBSplineBasis(triangulation, standard_knot_clouds(triangulation, 1)), -1),
-               Error);
+  EXPECT_THROW(
+      knot_segments_in_triangle(
+          TriangularBSplineBasis(triangulation, standard_knot_clouds(triangulation, 1)), -1),
+      Error);
 }
 
 TEST(PolynomialCells, EveryBSplineIsOnePolynomialOfDegreeNOnEveryCell) {
@@ -98,8 +100,8 @@ TEST(PolynomialCells, EveryBSplineIsOnePolynomialOfDegreeNOnEveryCell) {
         Eigen::MatrixXd design(rule.point_count(), terms);
         Eigen::MatrixXd samples;
         for (int g = 0; g < rule.point_count(); ++g) {
-          const Eigen::Vector2d u = rule.barycentric(g, 0) * a + rule.barycentric(g, 1) * b +
-                                    rule.barycentric(g, 2) * c;
+          const Eigen::Vector2d u =
+              rule.barycentric(g, 0) * a + rule.barycentric(g, 1) * b + rule.barycentric(g, 2) * c;
           basis.evaluate_in_triangle(t, u, 0, values);
           if (g == 0) {
             samples.resize(rule.point_count(), values.count);
@@ -108,7 +110,8 @@ TEST(PolynomialCells, EveryBSplineIsOnePolynomialOfDegreeNOnEveryCell) {
           int column = 0;
           for (int i = 0; i <= n; ++i) {
             for (int j = 0; i + j <= n; ++j) {
-              design(g, column++) = std::pow(rule.barycentric(g, 1), i) * std::pow(rule.barycentric(g, 2), j);
+              design(g, column++) =
+                  std::pow(rule.barycentric(g, 1), i) * std::pow(rule.barycentric(g, 2), j);
             }
           }
         }

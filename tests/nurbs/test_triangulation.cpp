@@ -162,8 +162,8 @@ TEST(TriangulationLocate, HalfOpenConventionPicksExactlyOneTriangleOnSharedEdges
   // Barycentric coordinates of the located triangle reproduce the point.
   const Eigen::Vector3d l = square.barycentric(0, Eigen::Vector2d(0.7, 0.2));
   EXPECT_NEAR(l.sum(), 1.0, 1e-15);
-  const Eigen::Vector2d back = l[0] * square.corner(0, 0) + l[1] * square.corner(0, 1) +
-                               l[2] * square.corner(0, 2);
+  const Eigen::Vector2d back =
+      l[0] * square.corner(0, 0) + l[1] * square.corner(0, 1) + l[2] * square.corner(0, 2);
   EXPECT_NEAR((back - Eigen::Vector2d(0.7, 0.2)).norm(), 0.0, 1e-15);
 }
 

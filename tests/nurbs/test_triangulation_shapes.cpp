@@ -47,7 +47,8 @@ TEST(TriangulationShapes, RefinementQuadruplesTrianglesAndKeepsTheDomain) {
   const Triangulation fine = refine_triangulation(coarse);
   EXPECT_EQ(fine.triangle_count(), 4 * coarse.triangle_count());
   // Euler: V - E + F = 1 for a disk; each edge adds one midpoint.
-  const int edges = (3 * coarse.triangle_count() + static_cast<int>(coarse.boundary_edges().rows())) / 2;
+  const int edges =
+      (3 * coarse.triangle_count() + static_cast<int>(coarse.boundary_edges().rows())) / 2;
   EXPECT_EQ(fine.vertex_count(), coarse.vertex_count() + edges);
   EXPECT_NEAR(fine.domain_area(), coarse.domain_area(), 1e-14);
   EXPECT_EQ(fine.boundary_edges().rows(), 2 * coarse.boundary_edges().rows());

@@ -19,9 +19,9 @@
 #include <iostream>
 #include <numbers>
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
-#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "dynamics/triangular/triangular_dnurbs_surface.h"
@@ -69,7 +69,8 @@ TEST(TriangularBoundaryConditions, AdmissibleCoefficientsVanishOnTheBoundary) {
   for (const Triangulation& domain : domains) {
     for (int n = 1; n <= 3; ++n) {
       const auto basis = test::triangular_basis(domain, n);
-      for (const auto condition : {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped}) {
+      for (const auto condition :
+           {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped}) {
         const bool clamped = condition == BoundaryCondition::kClamped;
         if (clamped && n == 1) {
           continue;  // C^0 splines have no normal derivative on the boundary to speak of
@@ -80,7 +81,8 @@ TEST(TriangularBoundaryConditions, AdmissibleCoefficientsVanishOnTheBoundary) {
         // space on the others) and C Z = 0 to round-off.
         ASSERT_GT(z.cols(), 0);
         const Eigen::MatrixXd ztz = Eigen::MatrixXd(z.transpose() * z);
-        EXPECT_LT((ztz - Eigen::MatrixXd::Identity(z.cols(), z.cols())).cwiseAbs().maxCoeff(), 1e-13);
+        EXPECT_LT((ztz - Eigen::MatrixXd::Identity(z.cols(), z.cols())).cwiseAbs().maxCoeff(),
+                  1e-13);
         EXPECT_LT(Eigen::MatrixXd(conditions * z).cwiseAbs().maxCoeff(), 1e-12);
         // Some freedom is left, and the boundary takes some away.
         ASSERT_GT(z.cols(), 0);
@@ -124,8 +126,9 @@ double plate_centre_deflection(int n, int cells, BoundaryCondition condition) {
   settings.quadrature_degree = 2 * n - 2;
   const TriangularDNurbsSurface model(flat_triangular_surface(basis), material, settings);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(model.velocity_count());
-  model.add_distributed_force(model.initial_coordinates(),
-                              [](const MaterialSample&) { return Eigen::Vector3d::UnitZ(); }, f);
+  model.add_distributed_force(
+      model.initial_coordinates(), [](const MaterialSample&) { return Eigen::Vector3d::UnitZ(); },
+      f);
   Eigen::VectorXd load(basis->function_count());
   for (Eigen::Index i = 0; i < load.size(); ++i) {
     load[i] = f[3 * i + 2];
@@ -133,7 +136,8 @@ double plate_centre_deflection(int n, int cells, BoundaryCondition condition) {
   // K = S (x) I_3: the deflection is the z part, S w = load on the admissible coefficients.
   const Eigen::SparseMatrix<double> z =
       constraint_null_space(boundary_trace_conditions(*basis, condition));
-  const Eigen::SparseMatrix<double> reduced = z.transpose() * model.scalar_matrices()->stiffness * z;
+  const Eigen::SparseMatrix<double> reduced =
+      z.transpose() * model.scalar_matrices()->stiffness * z;
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(reduced);
   const Eigen::VectorXd w = z * solver.solve(z.transpose() * load);
   Eigen::VectorXd q = model.initial_coordinates();
@@ -150,7 +154,8 @@ std::vector<double> plate_errors(int n, const std::vector<int>& cells, BoundaryC
   for (const int c : cells) {
     const double w = plate_centre_deflection(n, c, condition);
     errors.push_back(std::abs(w - exact) / exact);
-    std::cout << "plate degree " << n << (condition == BoundaryCondition::kClamped ? " clamped" : " simply supported")
+    std::cout << "plate degree " << n
+              << (condition == BoundaryCondition::kClamped ? " clamped" : " simply supported")
               << ", " << c << " x " << c << " cells: w = " << w << " (exact " << exact
               << "), relative error " << errors.back();
     if (errors.size() > 1) {

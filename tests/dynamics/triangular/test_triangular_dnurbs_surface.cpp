@@ -7,8 +7,8 @@
 
 #include <iostream>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/error.h"
 #include "dynamics/forces.h"
@@ -46,15 +46,15 @@ TEST(TriangularDNurbsMass, SumIsDensityTimesDomainAreaOnEveryDomain) {
     for (int n = 1; n <= 3; ++n) {
       const auto basis = test::triangular_basis(domain, n);
       const TriangularDNurbsSurface model(test::curved_triangular_surface(basis, false), material);
-      const Eigen::MatrixXd S(model.scalar_matrices()->mass);
+      const Eigen::MatrixXd mass(model.scalar_matrices()->mass);
       // Partition of unity makes the sum exactly 0.7 sum_g w_g = 0.7 area; round-off of the
       // weights' sum over ~1e5 points.
-      EXPECT_NEAR(S.sum(), 0.7 * domain.domain_area(), 1e-12 * domain.domain_area())
+      EXPECT_NEAR(mass.sum(), 0.7 * domain.domain_area(), 1e-12 * domain.domain_area())
           << "area " << domain.domain_area() << " degree " << n;
       EXPECT_NEAR(model.parametric_measure(), domain.domain_area(), 1e-14);
-      EXPECT_LT((S - S.transpose()).norm(), 1e-15 * S.norm());
+      EXPECT_LT((mass - mass.transpose()).norm(), 1e-15 * mass.norm());
       // Positive definite: the B-splines are linearly independent on these domains.
-      EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues().minCoeff(), 0.0);
+      EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(mass).eigenvalues().minCoeff(), 0.0);
     }
   }
 }
@@ -63,15 +63,17 @@ TEST(TriangularDNurbsStiffness, AnnihilatesTranslationsAndIsSymmetricSemiDefinit
   const auto basis = test::triangular_basis(l_shape_triangulation(1), 2);
   const TriangularDNurbsSurface model(test::curved_triangular_surface(basis, false),
                                       plate_under_tension());
-  const Eigen::MatrixXd K(model.constant_matrices()->stiffness);
-  Eigen::VectorXd translation(K.rows());
-  for (Eigen::Index i = 0; i < K.rows() / 3; ++i) {
+  const Eigen::MatrixXd stiffness(model.constant_matrices()->stiffness);
+  Eigen::VectorXd translation(stiffness.rows());
+  for (Eigen::Index i = 0; i < stiffness.rows() / 3; ++i) {
     translation.segment<3>(3 * i) << -0.4, 1.1, 0.25;
   }
   // Derivatives of the partition of unity vanish; round-off relative to the entries.
-  EXPECT_LT((K * translation).lpNorm<Eigen::Infinity>(), 1e-12 * K.lpNorm<Eigen::Infinity>());
-  EXPECT_LT((K - K.transpose()).norm(), 1e-15 * K.norm());
-  const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues();
+  EXPECT_LT((stiffness * translation).lpNorm<Eigen::Infinity>(),
+            1e-12 * stiffness.lpNorm<Eigen::Infinity>());
+  EXPECT_LT((stiffness - stiffness.transpose()).norm(), 1e-15 * stiffness.norm());
+  const Eigen::VectorXd eigenvalues =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(stiffness).eigenvalues();
   EXPECT_GT(eigenvalues.minCoeff(), -1e-12 * eigenvalues.maxCoeff());
   // Exactly three zero modes (the translations): the tension terms see every other motion.
   EXPECT_LT(eigenvalues[2], 1e-12 * eigenvalues.maxCoeff());
@@ -83,19 +85,20 @@ TEST(TriangularDNurbsStiffness, EnergyAndInternalForceAreTheQuadraticForm) {
   const TriangularDNurbsSurface model(test::curved_triangular_surface(basis, true),
                                       plate_under_tension());
   const Eigen::VectorXd q = model.initial_coordinates();
-  const SparseMatrix& K = model.constant_matrices()->stiffness;
-  EXPECT_NEAR(model.potential_energy(q), 0.5 * q.dot(K * q), 1e-12 * q.dot(K * q));
+  const SparseMatrix& stiffness = model.constant_matrices()->stiffness;
+  EXPECT_NEAR(model.potential_energy(q), 0.5 * q.dot(stiffness * q), 1e-12 * q.dot(stiffness * q));
   Eigen::VectorXd force = Eigen::VectorXd::Zero(q.size());
   model.add_internal_force(q, force);
-  EXPECT_LT((force + K * q).norm(), 1e-14 * (K * q).norm());
+  EXPECT_LT((force + stiffness * q).norm(), 1e-14 * (stiffness * q).norm());
   // Uniform distributed force: by partition of unity the generalized forces add up to the
   // force per area times the area (non-rational surface).
   const TriangularDNurbsSurface flat(flat_triangular_surface(basis), plate_under_tension());
   Eigen::VectorXd f = Eigen::VectorXd::Zero(q.size());
-  flat.add_distributed_force(flat.initial_coordinates(),
-                             [](const MaterialSample&) { return Eigen::Vector3d(0.5, -1.0, 2.0); }, f);
+  flat.add_distributed_force(
+      flat.initial_coordinates(),
+      [](const MaterialSample&) { return Eigen::Vector3d(0.5, -1.0, 2.0); }, f);
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
-  for (int i = 0; i < flat.control_point_count(); ++i) {
+  for (Eigen::Index i = 0; i < flat.control_point_count(); ++i) {
     total += f.segment<3>(3 * i);
   }
   EXPECT_LT((total - Eigen::Vector3d(0.5, -1.0, 2.0)).norm(), 1e-13);
@@ -108,9 +111,9 @@ TEST(TriangularDNurbsJacobian, PositionJacobianMatchesDifferencesWithFreeWeights
   const Eigen::VectorXd q = model.initial_coordinates();
   const double h = 1e-7;
   for (const Eigen::Vector2d& u : {Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(1.62, 0.71),
-                                  Eigen::Vector2d(0.45, 1.5), Eigen::Vector2d(1.0, 0.5)}) {
-    const Eigen::MatrixXd L(model.position_jacobian(q, u));
-    ASSERT_EQ(L.cols(), q.size());
+                                   Eigen::Vector2d(0.45, 1.5), Eigen::Vector2d(1.0, 0.5)}) {
+    const Eigen::MatrixXd jacobian(model.position_jacobian(q, u));
+    ASSERT_EQ(jacobian.cols(), q.size());
     Eigen::MatrixXd difference(3, q.size());
     for (Eigen::Index k = 0; k < q.size(); ++k) {
       Eigen::VectorXd plus = q;
@@ -120,7 +123,7 @@ TEST(TriangularDNurbsJacobian, PositionJacobianMatchesDifferencesWithFreeWeights
       difference.col(k) = (model.position(plus, u) - model.position(minus, u)) / (2 * h);
     }
     // Truncation h^2 |d^2 x / dw^2| and rounding 1e-16 / h.
-    EXPECT_LT((L - difference).cwiseAbs().maxCoeff(), 1e-8) << u.transpose();
+    EXPECT_LT((jacobian - difference).cwiseAbs().maxCoeff(), 1e-8) << u.transpose();
   }
 }
 
@@ -133,9 +136,9 @@ TEST(TriangularDNurbsJacobian, JdotTimesVelocityIsTheSecondDerivativeAlongTheVel
   const double h = 1e-4;
   for (const Eigen::Vector2d& u : {Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.7, 0.55)}) {
     // Along q(t) = q + t qd (qdd = 0) the acceleration of the point is Jdot qd.
-    const Eigen::Vector3d expected =
-        (model.position(q + h * qd, u) - 2.0 * model.position(q, u) + model.position(q - h * qd, u)) /
-        (h * h);
+    const Eigen::Vector3d expected = (model.position(q + h * qd, u) - 2.0 * model.position(q, u) +
+                                      model.position(q - h * qd, u)) /
+                                     (h * h);
     const Eigen::Vector3d rate = model.jacobian_rate_times_velocity(q, qd, u);
     // Truncation h^2 |x''''| ~ 1e-8 and rounding 1e-16 / h^2 = 1e-8.
     EXPECT_LT((rate - expected).norm(), 1e-6 * (1.0 + expected.norm())) << u.transpose();
@@ -189,12 +192,12 @@ TEST(TriangularDNurbsFreeWeights, MatricesEnergyAndForceMatchTheirDefinitions) {
   const TriangularQuadrature& quadrature = model.quadrature();
   Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(q.size(), q.size());
   for (int p = 0; p < quadrature.point_count(); ++p) {
-    const Eigen::MatrixXd L(model.position_jacobian(q, quadrature.parameter(p)));
-    expected += 1.3 * quadrature.weight(p) * L.transpose() * L;
+    const Eigen::MatrixXd jacobian(model.position_jacobian(q, quadrature.parameter(p)));
+    expected += 1.3 * quadrature.weight(p) * jacobian.transpose() * jacobian;
   }
-  const Eigen::MatrixXd M(matrices.mass);
-  EXPECT_LT((M - expected).norm(), 1e-12 * expected.norm());  // same sums, round-off
-  EXPECT_LT((M - M.transpose()).norm(), 1e-15 * M.norm());
+  const Eigen::MatrixXd mass(matrices.mass);
+  EXPECT_LT((mass - expected).norm(), 1e-12 * expected.norm());  // same sums, round-off
+  EXPECT_LT((mass - mass.transpose()).norm(), 1e-15 * mass.norm());
   // E = q^T K(q) q / 2 (x^alpha = J_alpha q: x is homogeneous of degree 0 in the weights), and
   // f_int = -dE/dq by central differences.
   const double energy = model.potential_energy(q);
@@ -266,8 +269,8 @@ TEST(TriangularDNurbsSculpting, PointForceOnAnLShapeSettlesToTheStaticSolution) 
     ++steps;
   }
   const double error = (system.coordinates() - reference.coordinates()).lpNorm<Eigen::Infinity>();
-  std::cout << "triangular sculpting: " << steps << " implicit-euler steps, distance to K q = f: "
-            << error << "\n";
+  std::cout << "triangular sculpting: " << steps
+            << " implicit-euler steps, distance to K q = f: " << error << "\n";
   // Implicit Euler's fixed point is K q = f; what remains is the slowest mode's decay below
   // the 1e-13 step change.
   EXPECT_LT(error, 1e-8);

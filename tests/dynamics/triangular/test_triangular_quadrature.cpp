@@ -6,8 +6,8 @@
 
 #include <iostream>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/error.h"
 #include "dynamics/triangular/triangular_dnurbs_surface.h"
@@ -72,7 +72,8 @@ TEST(TriangularQuadrature, WeightsTileEveryTriangleAndTheCacheIsTheBasis) {
       }
     }
     EXPECT_NEAR(area, basis->triangulation().area(e), 1e-14);
-    EXPECT_LE(static_cast<int>(quadrature.element_functions(e).size()), quadrature.max_local_count());
+    EXPECT_LE(static_cast<int>(quadrature.element_functions(e).size()),
+              quadrature.max_local_count());
   }
   EXPECT_THROW(TriangularQuadrature(basis, 15, 0, 2), Error);
   EXPECT_THROW(TriangularQuadrature(basis, 4, 65, 2), Error);
@@ -91,8 +92,8 @@ TEST(TriangularQuadrature, CompositeRuleErrorAgainstTheExactCellsIsMeasured) {
     const auto [composite_mass, composite_stiffness] = matrices(basis, 4, s);
     const double mass_error = (composite_mass - mass).norm() / mass.norm();
     const double stiffness_error = (composite_stiffness - stiffness).norm() / stiffness.norm();
-    std::cout << "composite rule, s = " << s << ": relative error of M " << mass_error
-              << ", of K " << stiffness_error << "\n";
+    std::cout << "composite rule, s = " << s << ": relative error of M " << mass_error << ", of K "
+              << stiffness_error << "\n";
     EXPECT_LT(mass_error, previous_mass);
     EXPECT_LT(stiffness_error, previous_stiffness);
     previous_mass = mass_error;

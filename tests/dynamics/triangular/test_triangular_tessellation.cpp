@@ -8,8 +8,8 @@
 #include <iostream>
 #include <map>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "core/error.h"
 #include "triangular_model_helpers.h"
@@ -52,11 +52,12 @@ TEST(TriangularTessellation, UniformMeshSharesVerticesAndIsExactOnAFlatSurface) 
   const TriangularNurbsSurface flat = flat_triangular_surface(basis);
   for (const int s : {1, 3, 4}) {
     const TriangleMesh mesh = tessellate_triangular_surface(flat, s);
-    const int edges = (3 * domain.triangle_count() + static_cast<int>(domain.boundary_edges().rows())) / 2;
+    const int edges =
+        (3 * domain.triangle_count() + static_cast<int>(domain.boundary_edges().rows())) / 2;
     EXPECT_EQ(mesh.triangle_count(), domain.triangle_count() * s * s);
     // Vertices: domain vertices, s - 1 per domain edge, (s - 1)(s - 2)/2 inside each triangle.
-    EXPECT_EQ(mesh.vertex_count(),
-              domain.vertex_count() + edges * (s - 1) + domain.triangle_count() * (s - 1) * (s - 2) / 2);
+    EXPECT_EQ(mesh.vertex_count(), domain.vertex_count() + edges * (s - 1) +
+                                       domain.triangle_count() * (s - 1) * (s - 2) / 2);
     int boundary = 0;
     for (const auto& [edge, count] : edge_uses(mesh)) {
       EXPECT_LE(count, 2);
@@ -108,7 +109,8 @@ TEST(TriangularTessellation, AdaptiveMeshIsConformingWithinTheErrorAndSmallerTha
     }
   }
   const double adaptive_error = triangular_chord_error(surface, adaptive, 4);
-  // The criterion samples 4 points per triangle; the 4-interval lattice (15 points) finds a little more.
+  // The criterion samples 4 points per triangle; the 4-interval lattice (15 points) finds a little
+  // more.
   EXPECT_LT(adaptive_error, 1.5 * tolerance);
   int s = 1;
   double uniform_error = 1.0;
