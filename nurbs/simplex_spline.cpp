@@ -211,14 +211,51 @@ void SimplexSplineSet::evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d&
   if (order < 0 || order > 2) {
     throw make_error("simplex spline derivative order ", order, " is outside 0..2");
   }
-  scratch.resize(6 * nodes_.size());
-  auto point = [&](int k) -> Eigen::Vector2d { return knots_.row(k).transpose(); };
-  // Nodes in graph order (children first): value, gradient and Hessian of each from the values
-  // and gradients of its children (Micchelli's recurrence and the derivative formula).
+  evaluate_nodes(u, direction, tolerance, order, scratch);
+  const int per_node = derivative_count(order);
+  result.setZero(6, static_cast<Eigen::Index>(roots_.size()));
+  for (size_t s = 0; s < roots_.size(); ++s) {
+    if (roots_[s] >= 0) {
+      const double* value =
+          &scratch[static_cast<size_t>(per_node) * static_cast<size_t>(roots_[s])];
+      for (int r = 0; r < per_node; ++r) {
+        result(r, static_cast<Eigen::Index>(s)) = value[r];
+      }
+    }
+  }
+}
+
+void SimplexSplineSet::evaluate_derivatives(const Eigen::Vector2d& u,
+                                            const Eigen::Vector2d& direction, double tolerance,
+                                            int order, Eigen::MatrixXd& result,
+                                            std::vector<double>& scratch) const {
+  if (order < 0 || order > kMaxSimplexDerivativeOrder) {
+    throw make_error("simplex spline derivative order ", order, " is outside 0..",
+                     kMaxSimplexDerivativeOrder);
+  }
+  evaluate_nodes(u, direction, tolerance, order, scratch);
+  const int per_node = derivative_count(order);
+  result.setZero(per_node, static_cast<Eigen::Index>(roots_.size()));
+  for (size_t s = 0; s < roots_.size(); ++s) {
+    if (roots_[s] >= 0) {
+      result.col(static_cast<Eigen::Index>(s)) = Eigen::Map<const Eigen::VectorXd>(
+          &scratch[static_cast<size_t>(per_node) * static_cast<size_t>(roots_[s])], per_node);
+    }
+  }
+}
+
+void SimplexSplineSet::evaluate_nodes(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                                      double tolerance, int order,
+                                      std::vector<double>& scratch) const {
+  const int per_node = derivative_count(order);
+  scratch.assign(static_cast<size_t>(per_node) * nodes_.size(), 0.0);
+  // Nodes in graph order (children first). The value by Micchelli's recurrence, the derivative
+  // d^(a+b) / du^a dv^b from the children's derivative of one order less:
+  //   D_u D^(a-1,b) M(V) = m sum_l mu_l(e_u | W) D^(a-1,b) M(V \ w_l)   (a > 0),
+  // likewise along v for a = 0.
   for (size_t i = 0; i < nodes_.size(); ++i) {
     const Node& node = nodes_[i];
-    double* out = &scratch[6 * i];
-    std::fill(out, out + 6, 0.0);
+    double* out = &scratch[static_cast<size_t>(per_node) * i];
     // Outside the knots' bounding box the spline and its derivatives vanish.
     if (u.x() < node.box_min.x() - tolerance || u.y() < node.box_min.y() - tolerance ||
         u.x() > node.box_max.x() + tolerance || u.y() > node.box_max.y() + tolerance) {
@@ -232,38 +269,26 @@ void SimplexSplineSet::evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d&
       out[0] = inside ? node.leaf_value : 0.0;
       continue;
     }
-    double lambda[3];
-    for (int l = 0; l < 3; ++l) {
-      const Eigen::Vector2d a = point(node.knot[(l + 1) % 3]) - u;
-      const Eigen::Vector2d b = point(node.knot[(l + 2) % 3]) - u;
-      lambda[l] = (a.x() * b.y() - a.y() * b.x()) * node.inverse_det;
-    }
     const auto m = static_cast<double>(node.degree);
     for (int l = 0; l < 3; ++l) {
       if (node.child[l] < 0) {
         continue;
       }
-      const double* child = &scratch[6 * static_cast<size_t>(node.child[l])];
+      const double* child =
+          &scratch[static_cast<size_t>(per_node) * static_cast<size_t>(node.child[l])];
+      const Eigen::Vector2d a = knots_.row(node.knot[(l + 1) % 3]).transpose() - u;
+      const Eigen::Vector2d b = knots_.row(node.knot[(l + 2) % 3]).transpose() - u;
+      const double lambda = (a.x() * b.y() - a.y() * b.x()) * node.inverse_det;
       const double mu_u = m * node.mu_u[l];  // m mu_l(e_u | W)
       const double mu_v = m * node.mu_v[l];
-      out[0] += lambda[l] * child[0];
-      if (order >= 1) {
-        out[1] += mu_u * child[0];
-        out[2] += mu_v * child[0];
-      }
-      if (order >= 2) {
-        out[3] += mu_u * child[1];
-        out[4] += mu_u * child[2];
-        out[5] += mu_v * child[2];
-      }
-    }
-  }
-  result.setZero(6, static_cast<Eigen::Index>(roots_.size()));
-  for (size_t s = 0; s < roots_.size(); ++s) {
-    if (roots_[s] >= 0) {
-      const double* value = &scratch[6 * static_cast<size_t>(roots_[s])];
-      for (int r = 0; r < 6; ++r) {
-        result(r, static_cast<Eigen::Index>(s)) = value[r];
+      out[0] += lambda * child[0];
+      for (int k = 1; k <= order; ++k) {
+        const int first = k * (k + 1) / 2;     // (k, 0)
+        const int previous = (k - 1) * k / 2;  // (k - 1, 0)
+        for (int j = 0; j < k; ++j) {          // (k - j, j), a = k - j > 0
+          out[first + j] += mu_u * child[previous + j];
+        }
+        out[first + k] += mu_v * child[previous + k - 1];  // (0, k) from (0, k - 1)
       }
     }
   }

@@ -61,9 +61,20 @@ inline double signed_double_area(const Eigen::Vector2d& a, const Eigen::Vector2d
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
-/// Values and derivatives of one simplex spline at a point: value, d/du, d/dv, d2/du2,
-/// d2/dudv, d2/dv2 (the order of SurfaceQuantity).
-using SimplexSplineDerivatives = Eigen::Matrix<double, 6, 1>;
+/// Highest derivative order of SimplexSplineSet::evaluate_derivatives.
+inline constexpr int kMaxSimplexDerivativeOrder = 8;
+
+/// Number of partial derivatives of total order <= order: (order + 1)(order + 2) / 2.
+inline constexpr int derivative_count(int order) {
+  return (order + 1) * (order + 2) / 2;
+}
+
+/// Row of d^(a+b) / du^a dv^b in derivative tables: by total order k = a + b, then b; so
+/// value, d/du, d/dv, d2/du2, d2/dudv, d2/dv2, d3/du3, ... (the first six are the order of
+/// SurfaceQuantity).
+inline constexpr int derivative_index(int a, int b) {
+  return (a + b) * (a + b + 1) / 2 + b;
+}
 
 /// Simplex splines of up to 32 knots, the sets requested at construction, evaluated together.
 ///
@@ -73,9 +84,12 @@ using SimplexSplineDerivatives = Eigen::Matrix<double, 6, 1>;
 /// Knots must be in general position where the recurrence needs it: a set whose knots are all
 /// collinear is the zero function (a measure on a line, zero almost everywhere); any other set
 /// of >= 4 knots has an affinely independent triple. The triple W of each set is chosen once:
-/// the last knot (highest index) of each of three `groups` when the set meets three groups
-/// (knot clouds of a triangle, so that the subsets of a DMS knot set stay DMS knot sets), else
-/// the affinely independent triple of highest indices.
+/// the last knot (highest index) of each of three `groups` when the set meets exactly three
+/// groups (the knot clouds of a triangle: a DMS knot set minus one of these is again a DMS knot
+/// set, so the sets of one triangle share most of their graph), else the triple of largest
+/// area (small barycentric coordinates near the set keep the cancellation small). Barycentric
+/// coordinates are computed from the differences w - u, so round-off stays near 1e-16 relative
+/// (partition of unity to 1e-15 measured up to degree 6).
 class SimplexSplineSet {
  public:
   /// `group[k]` is the group of knot k (or empty: no groups). Throws Error for more than 32
@@ -93,11 +107,18 @@ class SimplexSplineSet {
   /// the polynomial piece on knot lines through u; `tolerance` is the snap distance.
   void evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d& direction, double tolerance,
                 int order, Eigen::Matrix<double, 6, Eigen::Dynamic>& result) const;
-  /// The same with caller-owned scratch storage (6 node_count() doubles, resized as needed), so
-  /// that repeated evaluation does not allocate.
+  /// The same with caller-owned scratch storage (resized as needed), so that repeated
+  /// evaluation does not allocate.
   void evaluate(const Eigen::Vector2d& u, const Eigen::Vector2d& direction, double tolerance,
                 int order, Eigen::Matrix<double, 6, Eigen::Dynamic>& result,
                 std::vector<double>& scratch) const;
+  /// Every partial derivative d^(a+b) M / du^a dv^b with a + b <= order (0..
+  /// kMaxSimplexDerivativeOrder): result is derivative_count(order) by set_count(), row
+  /// derivative_index(a, b). Derivatives beyond a spline's degree are zero (its pieces are
+  /// polynomials of that degree).
+  void evaluate_derivatives(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                            double tolerance, int order, Eigen::MatrixXd& result,
+                            std::vector<double>& scratch) const;
 
  private:
   struct Node {
@@ -123,6 +144,9 @@ class SimplexSplineSet {
   };
 
   int build(std::uint32_t mask, std::unordered_map<std::uint32_t, int>& index);
+  // All derivatives up to `order` of every node into scratch (derivative_count(order) each).
+  void evaluate_nodes(const Eigen::Vector2d& u, const Eigen::Vector2d& direction, double tolerance,
+                      int order, std::vector<double>& scratch) const;
   void choose_triple(std::uint32_t mask, Node& node) const;
 
   Eigen::MatrixX2d knots_;

@@ -196,18 +196,30 @@ void TriangularBSplineBasis::evaluate_in_triangle(int t, const Eigen::Vector2d& 
   evaluate_in_triangle(t, u, direction, order, values);
 }
 
-void TriangularBSplineBasis::evaluate_in_triangle(int t, const Eigen::Vector2d& u,
-                                                  const Eigen::Vector2d& direction, int order,
-                                                  TriangularBasisValues& values) const {
+void TriangularBSplineBasis::check_point(int t, const Eigen::Vector2d& u,
+                                         const Eigen::Vector2d& direction) const {
   if (t < 0 || t >= triangulation_.triangle_count()) {
     throw make_error("triangle ", t, " is outside 0..", triangulation_.triangle_count() - 1);
-  }
-  if (order < 0 || order > 2) {
-    throw make_error("triangular B-spline derivative order ", order, " is outside 0..2");
   }
   if (!u.allFinite() || !direction.allFinite() || direction.squaredNorm() == 0.0) {
     throw make_error("cannot evaluate triangular B-splines at (", u.x(), ", ", u.y(),
                      ") in direction (", direction.x(), ", ", direction.y(), ")");
+  }
+}
+
+bool TriangularBSplineBasis::outside_knot_box(int s, const Eigen::Vector2d& u) const {
+  // Outside the knot box every B-spline of triangle s is zero.
+  const Eigen::Vector4d& box = knot_box_[static_cast<size_t>(s)];
+  return u.x() < box[0] - tolerance_ || u.y() < box[1] - tolerance_ ||
+         u.x() > box[2] + tolerance_ || u.y() > box[3] + tolerance_;
+}
+
+void TriangularBSplineBasis::evaluate_in_triangle(int t, const Eigen::Vector2d& u,
+                                                  const Eigen::Vector2d& direction, int order,
+                                                  TriangularBasisValues& values) const {
+  check_point(t, u, direction);
+  if (order < 0 || order > 2) {
+    throw make_error("triangular B-spline derivative order ", order, " is outside 0..2");
   }
   const auto& overlapping = overlapping_[static_cast<size_t>(t)];
   values.triangle = t;
@@ -220,16 +232,41 @@ void TriangularBSplineBasis::evaluate_in_triangle(int t, const Eigen::Vector2d& 
     for (int b = 0; b < per_triangle_; ++b) {
       values.function[static_cast<size_t>(first) + static_cast<size_t>(b)] = s * per_triangle_ + b;
     }
-    // Outside the knot box every B-spline of triangle s is zero.
-    const Eigen::Vector4d& box = knot_box_[static_cast<size_t>(s)];
-    if (u.x() < box[0] - tolerance_ || u.y() < box[1] - tolerance_ || u.x() > box[2] + tolerance_ ||
-        u.y() > box[3] + tolerance_) {
+    if (outside_knot_box(s, u)) {
       continue;
     }
     splines_[static_cast<size_t>(s)].evaluate(u, direction, tolerance_, order, values.simplex,
                                               values.scratch);
     for (int b = 0; b < per_triangle_; ++b) {
       values.value.col(first + b) = normalization(s * per_triangle_ + b) * values.simplex.col(b);
+    }
+  }
+}
+
+void TriangularBSplineBasis::derivatives_in_triangle(int t, const Eigen::Vector2d& u,
+                                                     const Eigen::Vector2d& direction, int order,
+                                                     std::vector<int>& functions,
+                                                     Eigen::MatrixXd& derivatives,
+                                                     std::vector<double>& scratch) const {
+  check_point(t, u, direction);
+  const auto& overlapping = overlapping_[static_cast<size_t>(t)];
+  const auto count = static_cast<Eigen::Index>(overlapping.size()) * per_triangle_;
+  functions.resize(static_cast<size_t>(count));
+  derivatives.setZero(derivative_count(order), count);
+  Eigen::MatrixXd simplex;
+  for (size_t k = 0; k < overlapping.size(); ++k) {
+    const int s = overlapping[k];
+    const auto first = static_cast<Eigen::Index>(k) * per_triangle_;
+    for (int b = 0; b < per_triangle_; ++b) {
+      functions[static_cast<size_t>(first + b)] = s * per_triangle_ + b;
+    }
+    if (outside_knot_box(s, u)) {
+      continue;
+    }
+    splines_[static_cast<size_t>(s)].evaluate_derivatives(u, direction, tolerance_, order, simplex,
+                                                          scratch);
+    for (int b = 0; b < per_triangle_; ++b) {
+      derivatives.col(first + b) = normalization(s * per_triangle_ + b) * simplex.col(b);
     }
   }
 }

@@ -106,8 +106,18 @@ class TriangularBSplineBasis {
   /// The same with an explicit direction: the limit of the pieces at u + eps direction.
   void evaluate_in_triangle(int t, const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
                             int order, TriangularBasisValues& values) const;
+  /// Every partial derivative d^(a+b) N / du^a dv^b, a + b <= order (0..
+  /// kMaxSimplexDerivativeOrder), of the B-splines of overlapping_triangles(t) at u from
+  /// `direction`: `derivatives` is derivative_count(order) by count, row derivative_index(a, b),
+  /// column k for B-spline functions[k]. With order n this is the whole polynomial piece at u.
+  void derivatives_in_triangle(int t, const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                               int order, std::vector<int>& functions, Eigen::MatrixXd& derivatives,
+                               std::vector<double>& scratch) const;
 
  private:
+  void check_point(int t, const Eigen::Vector2d& u, const Eigen::Vector2d& direction) const;
+  bool outside_knot_box(int s, const Eigen::Vector2d& u) const;
+
   Triangulation triangulation_;
   TriangularKnotClouds clouds_;
   int per_triangle_ = 0;

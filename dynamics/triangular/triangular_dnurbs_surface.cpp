@@ -151,6 +151,13 @@ TriangularControlNet TriangularDNurbsSurface::control_net(const ConstVectorRef& 
   return net;
 }
 
+void TriangularDNurbsSurface::check_velocity(const ConstVectorRef& qd) const {
+  if (qd.size() != velocity_count()) {
+    throw make_error("velocity vector has ", qd.size(), " entries, the model has ",
+                     velocity_count());
+  }
+}
+
 int TriangularDNurbsSurface::stiffness_order() const {
   int order = 0;
   for (int alpha = 1; alpha < 6; ++alpha) {
@@ -215,6 +222,7 @@ Eigen::Vector3d TriangularDNurbsSurface::jacobian_rate_times_velocity(
   if (mode_ == WeightMode::kFixed) {
     return Eigen::Vector3d::Zero();
   }
+  check_velocity(qd);
   TriangularBasisValues values;
   TriangularRationalJacobian jacobian;
   jacobian_at(u, control_net(q), 0, true, jacobian, values);
@@ -424,6 +432,7 @@ void TriangularDNurbsSurface::add_inertial_force(ConstVectorRef q, ConstVectorRe
     return;
   }
   // g = -integral mu J^T (Jdot qd).
+  check_velocity(qd);
   const TriangularControlNet net = control_net(q);
   TriangularBasisValues values;
   TriangularRationalJacobian jacobian;

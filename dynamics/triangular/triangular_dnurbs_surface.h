@@ -120,6 +120,7 @@ class TriangularDNurbsSurface : public Model {
   static constexpr int kMaterialStride = 7;
 
   TriangularControlNet control_net(const ConstVectorRef& q) const;
+  void check_velocity(const ConstVectorRef& qd) const;
   const double* material_at(int p) const {
     return &material_[static_cast<size_t>(p) * kMaterialStride];
   }

@@ -5,7 +5,9 @@
 // Journal on Numerical Analysis 21, 1984, driven by the chord error: the distance of the surface
 // at a triangle's parametric centroid and edge midpoints from the flat triangle through its
 // corners). Both meshes are conforming, share vertices along domain edges, carry per-vertex
-// unit normals (x_u x x_v normalized) and the domain parameters as texture coordinates.
+// unit normals (x_u x x_v normalized) and the domain parameters as texture coordinates. For
+// degree 1 (C^0) the normal jumps across knot segments; a shared vertex takes the normal from
+// the domain triangle of the mesh triangle that created it.
 
 #include <string>
 

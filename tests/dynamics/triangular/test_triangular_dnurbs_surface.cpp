@@ -300,6 +300,10 @@ TEST(TriangularDNurbsSurface, BadInputThrowsErrorNamingTheValue) {
   EXPECT_THROW(TriangularDNurbsSurface(surface, material), Error);
   const TriangularDNurbsSurface model(surface);
   EXPECT_THROW(model.position(Eigen::VectorXd::Zero(5), Eigen::Vector2d(0.5, 0.5)), Error);
+  const TriangularDNurbsSurface free(surface, {}, free_weights());
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(free.velocity_count());
+  EXPECT_THROW(free.add_inertial_force(free.initial_coordinates(), Eigen::VectorXd::Zero(3), g),
+               Error);
   EXPECT_THROW(model.position(model.initial_coordinates(), Eigen::Vector2d(2.0, 0.5)), Error);
 }
 
