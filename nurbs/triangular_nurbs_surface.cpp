@@ -8,109 +8,71 @@
 
 namespace dnurbs {
 
-namespace {
-
-// Leibniz terms of the quotient rule for quantity alpha (x, x_u, x_v, x_uu, x_uv, x_vv):
-// D^alpha (W phi) = sum over splits alpha = beta + rest of coefficient D^beta W D^rest phi.
-// Listed are the splits with beta != 0 (the beta = 0 term is W D^alpha phi).
-struct LeibnizTerm {
-  int beta;
-  int rest;
-  double coefficient;
-};
-struct LeibnizTerms {
-  int count;
-  std::array<LeibnizTerm, 3> terms;
-};
-constexpr std::array<LeibnizTerms, 6> kLeibniz = {{
-    {0, {}},
-    {1, {{{1, 0, 1.0}}}},
-    {1, {{{2, 0, 1.0}}}},
-    {2, {{{1, 1, 2.0}, {3, 0, 1.0}}}},
-    {3, {{{1, 2, 1.0}, {2, 1, 1.0}, {4, 0, 1.0}}}},
-    {2, {{{2, 2, 2.0}, {5, 0, 1.0}}}},
-}};
-
-int quantity_count(int order) {
-  return order == 0 ? 1 : (order == 1 ? 3 : 6);
-}
-
-}  // namespace
-
 void triangular_rational_jacobian(const TriangularBasisValues& basis, int order,
                                   const TriangularControlNet& net, bool with_weight_columns,
                                   TriangularRationalJacobian& jacobian) {
-  const int n = basis.count;
-  const int quantities = quantity_count(order);
+  if (order < 0 || order > 2) {
+    throw make_error("rational Jacobian order ", order, " is outside 0..2");
+  }
+  const Eigen::Index n = basis.count;
+  // The listed control points (3 by n) and weights.
+  Eigen::Matrix3Xd points(3, n);
+  Eigen::RowVectorXd weights(n);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
+    weights[a] = net.weights[node * net.weight_stride];
+    points.col(a) = Eigen::Map<const Eigen::Vector3d>(net.positions + node * net.position_stride);
+  }
+  // W and its derivatives, W^alpha = sum_a w_a N_a^alpha (rows: W, W_u, W_v, W_uu, W_uv, W_vv).
+  const Eigen::Matrix<double, 6, 1> w = basis.value * weights.transpose();
   jacobian.order = order;
-  jacobian.rational.setZero(6, n);
-  jacobian.phi.setZero(6, n);
-
-  // Weight function W^alpha = sum_a w_a N_a^alpha.
-  std::array<double, 6> weight_sum{};
-  for (int a = 0; a < n; ++a) {
-    const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
-    const double w = net.weights[node * net.weight_stride];
-    for (int alpha = 0; alpha < quantities; ++alpha) {
-      weight_sum[static_cast<size_t>(alpha)] += w * basis.value(alpha, a);
-    }
+  jacobian.weight_sum = w[0];
+  // phi_a = N_a / W by the quotient rule (differentiating W phi = N):
+  //   phi_u = (N_u - W_u phi) / W,  phi_uu = (N_uu - 2 W_u phi_u - W_uu phi) / W,
+  //   phi_uv = (N_uv - W_u phi_v - W_v phi_u - W_uv phi) / W, and likewise in v.
+  auto& phi = jacobian.phi;
+  phi.setZero(6, n);
+  const auto& values = basis.value;
+  phi.row(0) = values.row(0) / w[0];
+  if (order >= 1) {
+    phi.row(1) = (values.row(1) - w[1] * phi.row(0)) / w[0];
+    phi.row(2) = (values.row(2) - w[2] * phi.row(0)) / w[0];
   }
-  const double inverse_weight = 1.0 / weight_sum[0];
-  jacobian.weight_sum = weight_sum[0];
-
-  // phi_a = N_a / W by the quotient rule: W phi^alpha = N^alpha - sum_{beta != 0} c W^beta
-  // phi^rest.
-  for (int alpha = 0; alpha < quantities; ++alpha) {
-    const LeibnizTerms& leibniz = kLeibniz[static_cast<size_t>(alpha)];
-    for (int a = 0; a < n; ++a) {
-      double value = basis.value(alpha, a);
-      for (int t = 0; t < leibniz.count; ++t) {
-        const LeibnizTerm& term = leibniz.terms[static_cast<size_t>(t)];
-        value -= term.coefficient * weight_sum[static_cast<size_t>(term.beta)] *
-                 jacobian.phi(term.rest, a);
-      }
-      jacobian.phi(alpha, a) = value * inverse_weight;
-    }
+  if (order >= 2) {
+    phi.row(3) = (values.row(3) - 2.0 * w[1] * phi.row(1) - w[3] * phi.row(0)) / w[0];
+    phi.row(4) = (values.row(4) - w[1] * phi.row(2) - w[2] * phi.row(1) - w[4] * phi.row(0)) / w[0];
+    phi.row(5) = (values.row(5) - 2.0 * w[2] * phi.row(2) - w[5] * phi.row(0)) / w[0];
   }
-
   // R_a^alpha = w_a phi_a^alpha and x^alpha = sum_a R_a^alpha P_a.
-  for (auto& point : jacobian.point) {
-    point.setZero();
-  }
-  for (int a = 0; a < n; ++a) {
-    const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
-    const double w = net.weights[node * net.weight_stride];
-    const Eigen::Map<const Eigen::Vector3d> position(net.positions + node * net.position_stride);
-    for (int alpha = 0; alpha < quantities; ++alpha) {
-      const double r = w * jacobian.phi(alpha, a);
-      jacobian.rational(alpha, a) = r;
-      jacobian.point[static_cast<size_t>(alpha)] += r * position;
-    }
+  const int quantities = order == 0 ? 1 : (order == 1 ? 3 : 6);
+  jacobian.rational = phi.array().rowwise() * weights.array();
+  for (int alpha = 0; alpha < 6; ++alpha) {
+    jacobian.point[static_cast<size_t>(alpha)] =
+        alpha < quantities ? Eigen::Vector3d(points * jacobian.rational.row(alpha).transpose())
+                           : Eigen::Vector3d::Zero();
   }
   if (!with_weight_columns) {
     return;
   }
-
-  // E_a^alpha = D^alpha [phi_a (P_a - x)] = phi_a^alpha P_a - sum_{beta <= alpha} c phi^beta
-  // x^rest.
+  // d x^alpha / d w_a = D^alpha [phi_a (P_a - x)] by the Leibniz rule:
+  //   E^u = phi_u (P - x) - phi x_u,  E^uu = phi_uu (P - x) - 2 phi_u x_u - phi x_uu,
+  //   E^uv = phi_uv (P - x) - phi_u x_v - phi_v x_u - phi x_uv, and likewise in v.
+  const Eigen::Matrix3Xd offset = points.colwise() - jacobian.point[0];
+  const auto& x = jacobian.point;
+  auto& e = jacobian.weight_column;
   for (int alpha = 0; alpha < 6; ++alpha) {
-    jacobian.weight_column[static_cast<size_t>(alpha)].setZero(3, n);
+    e[static_cast<size_t>(alpha)] =
+        alpha < quantities ? Eigen::Matrix3Xd(offset.array().rowwise() * phi.row(alpha).array())
+                           : Eigen::Matrix3Xd::Zero(3, n);
   }
-  for (int alpha = 0; alpha < quantities; ++alpha) {
-    auto& column = jacobian.weight_column[static_cast<size_t>(alpha)];
-    const LeibnizTerms& leibniz = kLeibniz[static_cast<size_t>(alpha)];
-    for (int a = 0; a < n; ++a) {
-      const std::ptrdiff_t node = basis.function[static_cast<size_t>(a)];
-      const Eigen::Map<const Eigen::Vector3d> position(net.positions + node * net.position_stride);
-      Eigen::Vector3d value = jacobian.phi(alpha, a) * position -
-                              jacobian.phi(0, a) * jacobian.point[static_cast<size_t>(alpha)];
-      for (int t = 0; t < leibniz.count; ++t) {
-        const LeibnizTerm& term = leibniz.terms[static_cast<size_t>(t)];
-        value -= term.coefficient * jacobian.phi(term.beta, a) *
-                 jacobian.point[static_cast<size_t>(term.rest)];
-      }
-      column.col(a) = value;
-    }
+  if (order >= 1) {
+    e[1] -= x[1] * phi.row(0);
+    e[2] -= x[2] * phi.row(0);
+  }
+  if (order >= 2) {
+    e[3] -= 2.0 * x[1] * phi.row(1) + x[3] * phi.row(0);
+    e[4] -= x[2] * phi.row(1) + x[1] * phi.row(2) + x[4] * phi.row(0);
+    e[5] -= 2.0 * x[2] * phi.row(2) + x[5] * phi.row(0);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 #include "dynamics/triangular/triangular_free_weight_terms.h"
@@ -11,23 +12,19 @@ namespace dnurbs {
 
 namespace {
 
-// Stiffness weights k_alpha of the quantities alpha = 1..5 (x_u, x_v, x_uu, x_uv, x_vv): the
-// mixed term enters the thin plate under tension with the factor 2.
-std::array<MaterialFunction, 6> stiffness_functions(const DNurbsSurfaceMaterial& material) {
-  std::array<MaterialFunction, 6> stiffness;
-  stiffness[1] = material.a10;
-  stiffness[2] = material.a01;
-  stiffness[3] = material.b20;
-  if (material.b11.is_constant()) {
-    stiffness[4] = MaterialFunction(2.0 * material.b11(Eigen::Vector2d::Zero()));
-  } else {
-    const MaterialFunction b11 = material.b11;
-    stiffness[4] = MaterialFunction(std::function<double(const Eigen::Vector2d&)>(
-        [b11](const Eigen::Vector2d& u) { return 2.0 * b11(u); }));
+// Element matrices of one domain triangle (local count squared entries, or 16 times that in
+// 4 x 4 blocks for free weights), cleared per element.
+struct ElementMatrices {
+  explicit ElementMatrices(size_t size) : mass(size), damping(size), stiffness(size) {}
+  void clear() {
+    std::fill(mass.begin(), mass.end(), 0.0);
+    std::fill(damping.begin(), damping.end(), 0.0);
+    std::fill(stiffness.begin(), stiffness.end(), 0.0);
   }
-  stiffness[5] = material.b02;
-  return stiffness;
-}
+  std::vector<double> mass;
+  std::vector<double> damping;
+  std::vector<double> stiffness;
+};
 
 }  // namespace
 
@@ -66,10 +63,14 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   }
 
   // Quadrature points with the cached B-splines (derivatives up to the stiffness order) -----
-  const std::array<MaterialFunction, 6> stiffness = stiffness_functions(material);
+  // Stiffness weights of x_u, x_v, x_uu, x_uv, x_vv: the mixed term enters the thin plate
+  // under tension as 2 b11 |x_uv|^2.
+  const std::array<const MaterialFunction*, 6> stiffness = {
+      nullptr, &material.a10, &material.a01, &material.b20, &material.b11, &material.b02};
+  const std::array<double, 6> factor = {0.0, 1.0, 1.0, 1.0, 2.0, 1.0};
   has_damping_ = !material.damping_density.is_zero();
   for (int alpha = 1; alpha < 6; ++alpha) {
-    has_stiffness_[static_cast<size_t>(alpha)] = !stiffness[static_cast<size_t>(alpha)].is_zero();
+    has_stiffness_[static_cast<size_t>(alpha)] = !stiffness[static_cast<size_t>(alpha)]->is_zero();
   }
   const int n = surface.basis().degree();
   const int degree = settings.quadrature_degree > 0 ? settings.quadrature_degree
@@ -80,7 +81,7 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
       surface.shared_basis(), degree, subdivisions, std::max(1, stiffness_order()));
 
   // Material values at every quadrature point, checked once --------------------------------
-  const std::array<const char*, 6> names = {"", "a10", "a01", "b20", "2 b11", "b02"};
+  const std::array<const char*, 6> names = {"", "a10", "a01", "b20", "b11", "b02"};
   material_.assign(static_cast<size_t>(quadrature_->point_count()) * kMaterialStride, 0.0);
   for (int p = 0; p < quadrature_->point_count(); ++p) {
     const Eigen::Vector2d& u = quadrature_->parameter(p);
@@ -89,38 +90,33 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
     m[1] = material.damping_density.checked(u, "damping density", true);
     for (int alpha = 1; alpha < 6; ++alpha) {
       if (has_stiffness_[static_cast<size_t>(alpha)]) {
-        m[1 + alpha] = stiffness[static_cast<size_t>(alpha)].checked(
-            u, names[static_cast<size_t>(alpha)], true);
+        const auto k = static_cast<size_t>(alpha);
+        m[1 + alpha] = factor[k] * stiffness[k]->checked(u, names[k], true);
       }
     }
   }
   pattern_ = quadrature_->assembly_pattern();
 
-  // Coordinates -----------------------------------------------------------------------------
-  initial_coordinates_.resize(coordinate_count());
-  for (int i = 0; i < count_; ++i) {
-    initial_coordinates_.segment<3>(static_cast<Eigen::Index>(i) * per_control_point_) =
-        surface.control_points().row(i).transpose();
-    if (mode_ == WeightMode::kFree) {
-      initial_coordinates_[i * 4 + 3] = weights[i];
-    }
+  // Coordinates: q = [P_0, P_1, ...] or [P_0, w_0, P_1, w_1, ...] -----------------------------
+  Eigen::MatrixXd stacked(per_control_point_, count_);
+  stacked.topRows<3>() = surface.control_points().transpose();
+  if (mode_ == WeightMode::kFree) {
+    stacked.row(3) = weights.transpose();
   }
+  initial_coordinates_ = stacked.reshaped();
   if (mode_ == WeightMode::kFixed) {
+    // Constant matrices S and S (x) I_3, assembled once.
     fixed_weights_ = weights;
     assemble_scalar(scalar_);
-    expanded_.mass = kronecker_identity(scalar_.mass, 3);
-    expanded_.damping = kronecker_identity(scalar_.damping, 3);
-    expanded_.stiffness = kronecker_identity(scalar_.stiffness, 3);
+    for (auto [scalar, expanded] : {std::pair{&scalar_.mass, &expanded_.mass},
+                                    std::pair{&scalar_.damping, &expanded_.damping},
+                                    std::pair{&scalar_.stiffness, &expanded_.stiffness}}) {
+      *expanded = kronecker_identity(*scalar, 3);
+    }
     return;
   }
   block_pattern_ = dense_block_pattern(pattern_.scalar, 4);
-  const auto* outer = pattern_.scalar.outerIndexPtr();
-  const auto* inner = pattern_.scalar.innerIndexPtr();
-  for (int i = 0; i < count_; ++i) {
-    const auto* found = std::lower_bound(inner + outer[i], inner + outer[i + 1], i);
-    weight_diagonal_.push_back(dense_block_value_index(
-        block_pattern_, pattern_.scalar, static_cast<int>(found - inner), i, 3, 3, 4));
-  }
+  weight_diagonal_ = block_diagonal_value_indices(pattern_.scalar, block_pattern_, 4, 3);
   if (settings.fix_weight_gauge) {
     fix_weight(0);
   }
@@ -138,17 +134,9 @@ TriangularControlNet TriangularDNurbsSurface::control_net(const ConstVectorRef& 
     throw make_error("coordinate vector has ", q.size(), " entries, the model has ",
                      coordinate_count());
   }
-  TriangularControlNet net;
-  net.positions = q.data();
-  net.position_stride = per_control_point_;
-  if (mode_ == WeightMode::kFree) {
-    net.weights = q.data() + 3;
-    net.weight_stride = 4;
-  } else {
-    net.weights = fixed_weights_.data();
-    net.weight_stride = 1;
-  }
-  return net;
+  // Free weights sit after each point's position in q; fixed ones in their own vector.
+  const bool free = mode_ == WeightMode::kFree;
+  return {q.data(), per_control_point_, free ? q.data() + 3 : fixed_weights_.data(), free ? 4 : 1};
 }
 
 void TriangularDNurbsSurface::check_velocity(const ConstVectorRef& qd) const {
@@ -168,13 +156,25 @@ int TriangularDNurbsSurface::stiffness_order() const {
   return order;
 }
 
-void TriangularDNurbsSurface::jacobian_at_point(int p, const TriangularControlNet& net, int order,
-                                                bool weight_columns,
-                                                TriangularRationalJacobian& jacobian,
-                                                TriangularBasisValues& values,
-                                                std::vector<int>& local) const {
-  quadrature_->basis_at(p, values, local);
-  triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
+template <typename Visit>
+void TriangularDNurbsSurface::for_each_point_of(int e, const TriangularControlNet& net, int order,
+                                                bool weight_columns, Visit&& visit) const {
+  TriangularBasisValues values;
+  TriangularRationalJacobian jacobian;
+  std::vector<int> local;
+  for (int p = quadrature_->element_begin(e); p < quadrature_->element_begin(e + 1); ++p) {
+    quadrature_->basis_at(p, values, local);
+    triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
+    visit(p, values, jacobian, local);
+  }
+}
+
+template <typename Visit>
+void TriangularDNurbsSurface::for_each_point(const TriangularControlNet& net, int order,
+                                             bool weight_columns, Visit&& visit) const {
+  for (int e = 0; e < quadrature_->element_count(); ++e) {
+    for_each_point_of(e, net, order, weight_columns, visit);
+  }
 }
 
 void TriangularDNurbsSurface::jacobian_at(const Eigen::Vector2d& u, const TriangularControlNet& net,
@@ -253,56 +253,49 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
   // S_D = integral gamma R_a R_b, S_K = integral sum_alpha k_alpha R_a^alpha R_b^alpha, each
   // a sum over the quadrature points of every domain triangle.
   const int local = pattern_.local_count;
-  const auto local_size = static_cast<size_t>(local) * static_cast<size_t>(local);
-  std::vector<double> mass(local_size);
-  std::vector<double> damping(local_size);
-  std::vector<double> stiffness(local_size);
+  ElementMatrices element(static_cast<size_t>(local) * static_cast<size_t>(local));
   scalar.mass = pattern_.scalar;
   scalar.stiffness = pattern_.scalar;
   scalar.damping = has_damping_ ? pattern_.scalar : SparseMatrix(count_, count_);
-  const int order = stiffness_order();
   const TriangularControlNet net = control_net(initial_coordinates_);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  std::vector<int> local_index;
   for (int e = 0; e < quadrature_->element_count(); ++e) {
-    std::fill(mass.begin(), mass.end(), 0.0);
-    std::fill(damping.begin(), damping.end(), 0.0);
-    std::fill(stiffness.begin(), stiffness.end(), 0.0);
-    for (int p = quadrature_->element_begin(e); p < quadrature_->element_begin(e + 1); ++p) {
-      jacobian_at_point(p, net, order, false, jacobian, values, local_index);
-      const double weight = quadrature_->weight(p);
-      const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
-      const auto& rational = jacobian.rational;
-      for (int i = 0; i < values.count; ++i) {
-        const auto row =
-            static_cast<size_t>(local_index[static_cast<size_t>(i)]) * static_cast<size_t>(local);
-        for (int j = 0; j < values.count; ++j) {
-          const size_t index = row + static_cast<size_t>(local_index[static_cast<size_t>(j)]);
-          // Products of two basis values first: the element matrices are exactly symmetric.
-          const double product = weight * (rational(0, i) * rational(0, j));
-          mass[index] += m[0] * product;
-          damping[index] += m[1] * product;
-          double k = 0.0;
-          for (int alpha = 1; alpha < 6; ++alpha) {
-            if (has_stiffness_[static_cast<size_t>(alpha)]) {
-              k += m[1 + alpha] * (rational(alpha, i) * rational(alpha, j));
-            }
-          }
-          stiffness[index] += weight * k;
-        }
-      }
-    }
+    element.clear();
+    for_each_point_of(e, net, stiffness_order(), false,
+                      [&](int p, const TriangularBasisValues& values,
+                          const TriangularRationalJacobian& jacobian, const std::vector<int>& at) {
+                        const double weight = quadrature_->weight(p);
+                        const double* m = material_at(p);
+                        const auto& rational = jacobian.rational;
+                        for (int i = 0; i < values.count; ++i) {
+                          const auto row = static_cast<size_t>(at[static_cast<size_t>(i)]) *
+                                           static_cast<size_t>(local);
+                          for (int j = 0; j < values.count; ++j) {
+                            const size_t index =
+                                row + static_cast<size_t>(at[static_cast<size_t>(j)]);
+                            // Products of two basis values first: exactly symmetric matrices.
+                            const double product = weight * (rational(0, i) * rational(0, j));
+                            element.mass[index] += m[0] * product;
+                            element.damping[index] += m[1] * product;
+                            double k = 0.0;
+                            for (int alpha = 1; alpha < 6; ++alpha) {
+                              if (has_stiffness_[static_cast<size_t>(alpha)]) {
+                                k += m[1 + alpha] * (rational(alpha, i) * rational(alpha, j));
+                              }
+                            }
+                            element.stiffness[index] += weight * k;
+                          }
+                        }
+                      });
     // Scatter the element matrices (only the element's own local pairs) into the pattern.
     const int element_local = static_cast<int>(quadrature_->element_functions(e).size());
-    const int* to_value = &pattern_.local_to_value[static_cast<size_t>(e) * local_size];
+    const int* to_value = &pattern_.local_to_value[static_cast<size_t>(e) * element.mass.size()];
     for (int a = 0; a < element_local; ++a) {
       for (int b = 0; b < element_local; ++b) {
         const auto i = static_cast<size_t>(a) * static_cast<size_t>(local) + static_cast<size_t>(b);
-        scalar.mass.valuePtr()[to_value[i]] += mass[i];
-        scalar.stiffness.valuePtr()[to_value[i]] += stiffness[i];
+        scalar.mass.valuePtr()[to_value[i]] += element.mass[i];
+        scalar.stiffness.valuePtr()[to_value[i]] += element.stiffness[i];
         if (has_damping_) {
-          scalar.damping.valuePtr()[to_value[i]] += damping[i];
+          scalar.damping.valuePtr()[to_value[i]] += element.damping[i];
         }
       }
     }
@@ -313,56 +306,40 @@ void TriangularDNurbsSurface::assemble_free(const ConstVectorRef& q,
                                             ModelMatrices& matrices) const {
   // Free weights: 4 x 4 blocks [[R_a R_b I_3, R_a E_b], [E_a^T R_b, E_a . E_b]] per quantity.
   const int local = pattern_.local_count;
-  const auto block_size = 16 * static_cast<size_t>(local) * static_cast<size_t>(local);
-  std::vector<double> mass(block_size);
-  std::vector<double> damping(block_size);
-  std::vector<double> stiffness(block_size);
-  auto reset = [&](SparseMatrix& matrix, bool used) {
-    if (!used) {
-      matrix = SparseMatrix(block_pattern_.rows(), block_pattern_.cols());
-    } else if (matrix.nonZeros() != block_pattern_.nonZeros() ||
-               matrix.rows() != block_pattern_.rows() || !matrix.isCompressed()) {
-      matrix = block_pattern_;
-    } else {
-      std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
-    }
-  };
-  reset(matrices.mass, true);
-  reset(matrices.damping, has_damping_);
-  reset(matrices.stiffness, true);
-  const int order = stiffness_order();
+  ElementMatrices element(16 * static_cast<size_t>(local) * static_cast<size_t>(local));
+  reset_to_pattern(block_pattern_, true, matrices.mass);
+  reset_to_pattern(block_pattern_, has_damping_, matrices.damping);
+  reset_to_pattern(block_pattern_, true, matrices.stiffness);
   const TriangularControlNet net = control_net(q);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  std::vector<int> local_index;
   for (int e = 0; e < quadrature_->element_count(); ++e) {
-    std::fill(mass.begin(), mass.end(), 0.0);
-    std::fill(damping.begin(), damping.end(), 0.0);
-    std::fill(stiffness.begin(), stiffness.end(), 0.0);
-    for (int p = quadrature_->element_begin(e); p < quadrature_->element_begin(e + 1); ++p) {
-      jacobian_at_point(p, net, order, true, jacobian, values, local_index);
-      const double weight = quadrature_->weight(p);
-      const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
-      std::array<double, 6> coefficient{};
-      coefficient[0] = weight * m[0];
-      add_free_weight_terms(jacobian, coefficient, values.count, local_index, local, mass);
-      if (has_damping_) {
-        coefficient[0] = weight * m[1];
-        add_free_weight_terms(jacobian, coefficient, values.count, local_index, local, damping);
-      }
-      coefficient[0] = 0.0;
-      for (int alpha = 1; alpha < 6; ++alpha) {
-        coefficient[static_cast<size_t>(alpha)] =
-            has_stiffness_[static_cast<size_t>(alpha)] ? weight * m[1 + alpha] : 0.0;
-      }
-      add_free_weight_terms(jacobian, coefficient, values.count, local_index, local, stiffness);
-    }
+    element.clear();
+    for_each_point_of(
+        e, net, stiffness_order(), true,
+        [&](int p, const TriangularBasisValues& values, const TriangularRationalJacobian& jacobian,
+            const std::vector<int>& at) {
+          const double weight = quadrature_->weight(p);
+          const double* m = material_at(p);
+          std::array<double, 6> coefficient{};
+          coefficient[0] = weight * m[0];
+          add_free_weight_terms(jacobian, coefficient, values.count, at, local, element.mass);
+          if (has_damping_) {
+            coefficient[0] = weight * m[1];
+            add_free_weight_terms(jacobian, coefficient, values.count, at, local, element.damping);
+          }
+          coefficient[0] = 0.0;
+          for (int alpha = 1; alpha < 6; ++alpha) {
+            coefficient[static_cast<size_t>(alpha)] =
+                has_stiffness_[static_cast<size_t>(alpha)] ? weight * m[1 + alpha] : 0.0;
+          }
+          add_free_weight_terms(jacobian, coefficient, values.count, at, local, element.stiffness);
+        });
     const int element_local = static_cast<int>(quadrature_->element_functions(e).size());
-    scatter_free_weight_block(pattern_, block_pattern_, e, element_local, mass, matrices.mass);
-    scatter_free_weight_block(pattern_, block_pattern_, e, element_local, stiffness,
+    scatter_free_weight_block(pattern_, block_pattern_, e, element_local, element.mass,
+                              matrices.mass);
+    scatter_free_weight_block(pattern_, block_pattern_, e, element_local, element.stiffness,
                               matrices.stiffness);
     if (has_damping_) {
-      scatter_free_weight_block(pattern_, block_pattern_, e, element_local, damping,
+      scatter_free_weight_block(pattern_, block_pattern_, e, element_local, element.damping,
                                 matrices.damping);
     }
   }
@@ -380,49 +357,42 @@ void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef for
     return;
   }
   // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T x^alpha.
-  const int order = stiffness_order();
-  if (order == 0) {
+  if (stiffness_order() == 0) {
     return;
   }
-  const TriangularControlNet net = control_net(q);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  std::vector<int> local_index;
-  for (int p = 0; p < quadrature_->point_count(); ++p) {
-    jacobian_at_point(p, net, order, true, jacobian, values, local_index);
-    const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
-    for (int alpha = 1; alpha < 6; ++alpha) {
-      if (!has_stiffness_[static_cast<size_t>(alpha)]) {
-        continue;
-      }
-      const Eigen::Vector3d x =
-          quadrature_->weight(p) * m[1 + alpha] * jacobian.point[static_cast<size_t>(alpha)];
-      add_transposed_jacobian_times(values, jacobian, alpha, true, -x, force);
-    }
-  }
+  for_each_point(control_net(q), stiffness_order(), true,
+                 [&](int p, const TriangularBasisValues& values,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   const double* m = material_at(p);
+                   for (int alpha = 1; alpha < 6; ++alpha) {
+                     if (has_stiffness_[static_cast<size_t>(alpha)]) {
+                       const Eigen::Vector3d x = quadrature_->weight(p) * m[1 + alpha] *
+                                                 jacobian.point[static_cast<size_t>(alpha)];
+                       add_transposed_jacobian_times(values, jacobian, alpha, true, -x, force);
+                     }
+                   }
+                 });
 }
 
 double TriangularDNurbsSurface::potential_energy(ConstVectorRef q) const {
-  const int order = stiffness_order();
-  if (order == 0) {
-    return 0.0;
-  }
-  const TriangularControlNet net = control_net(q);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  std::vector<int> local_index;
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2.
   double energy = 0.0;
-  for (int p = 0; p < quadrature_->point_count(); ++p) {
-    jacobian_at_point(p, net, order, false, jacobian, values, local_index);
-    const double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
-    double density = 0.0;
-    for (int alpha = 1; alpha < 6; ++alpha) {
-      if (has_stiffness_[static_cast<size_t>(alpha)]) {
-        density += m[1 + alpha] * jacobian.point[static_cast<size_t>(alpha)].squaredNorm();
-      }
-    }
-    energy += 0.5 * quadrature_->weight(p) * density;
+  if (stiffness_order() == 0) {
+    return energy;
   }
+  for_each_point(control_net(q), stiffness_order(), false,
+                 [&](int p, const TriangularBasisValues&,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   const double* m = material_at(p);
+                   double density = 0.0;
+                   for (int alpha = 1; alpha < 6; ++alpha) {
+                     if (has_stiffness_[static_cast<size_t>(alpha)]) {
+                       density +=
+                           m[1 + alpha] * jacobian.point[static_cast<size_t>(alpha)].squaredNorm();
+                     }
+                   }
+                   energy += 0.5 * quadrature_->weight(p) * density;
+                 });
   return energy;
 }
 
@@ -433,16 +403,13 @@ void TriangularDNurbsSurface::add_inertial_force(ConstVectorRef q, ConstVectorRe
   }
   // g = -integral mu J^T (Jdot qd).
   check_velocity(qd);
-  const TriangularControlNet net = control_net(q);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  std::vector<int> local_index;
-  for (int p = 0; p < quadrature_->point_count(); ++p) {
-    jacobian_at_point(p, net, 0, true, jacobian, values, local_index);
-    const double mu = material_at(p)[0] * quadrature_->weight(p);
-    const Eigen::Vector3d h = mu * free_weight_acceleration(values, jacobian, qd);
-    add_transposed_jacobian_times(values, jacobian, 0, true, -h, force);
-  }
+  for_each_point(control_net(q), 0, true,
+                 [&](int p, const TriangularBasisValues& values,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   const double mu = material_at(p)[0] * quadrature_->weight(p);
+                   const Eigen::Vector3d h = mu * free_weight_acceleration(values, jacobian, qd);
+                   add_transposed_jacobian_times(values, jacobian, 0, true, -h, force);
+                 });
 }
 
 void TriangularDNurbsSurface::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u,
@@ -458,21 +425,18 @@ void TriangularDNurbsSurface::add_distributed_force(ConstVectorRef q, const Forc
                                                     VectorRef force) const {
   // f_q = integral J^T f(u) du by the model's quadrature rule.
   const bool free = mode_ == WeightMode::kFree;
-  const TriangularControlNet net = control_net(q);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  std::vector<int> local_index;
   MaterialSample sample;
-  for (int p = 0; p < quadrature_->point_count(); ++p) {
-    jacobian_at_point(p, net, 1, free, jacobian, values, local_index);
-    sample.parameter = quadrature_->parameter(p);
-    sample.position = jacobian.point[0];
-    sample.tangent_u = jacobian.point[1];
-    sample.tangent_v = jacobian.point[2];
-    sample.mass_density = material_at(p)[0];
-    const Eigen::Vector3d f = quadrature_->weight(p) * density(sample);
-    add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
-  }
+  for_each_point(control_net(q), 1, free,
+                 [&](int p, const TriangularBasisValues& values,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   sample.parameter = quadrature_->parameter(p);
+                   sample.position = jacobian.point[0];
+                   sample.tangent_u = jacobian.point[1];
+                   sample.tangent_v = jacobian.point[2];
+                   sample.mass_density = material_at(p)[0];
+                   const Eigen::Vector3d f = quadrature_->weight(p) * density(sample);
+                   add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
+                 });
 }
 
 void TriangularDNurbsSurface::project_state(Eigen::Ref<Eigen::VectorXd> q,

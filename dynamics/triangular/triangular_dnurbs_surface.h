@@ -125,11 +125,15 @@ class TriangularDNurbsSurface : public Model {
     return &material_[static_cast<size_t>(p) * kMaterialStride];
   }
   int stiffness_order() const;
-  // Evaluates the rational Jacobian at quadrature point p (basis cached).
-  void jacobian_at_point(int p, const TriangularControlNet& net, int order, bool weight_columns,
-                         TriangularRationalJacobian& jacobian, TriangularBasisValues& values,
-                         std::vector<int>& local) const;
-  // ... and at an arbitrary parameter.
+  // Calls visit(p, values, jacobian, local) at every quadrature point p of element e (or of all
+  // elements) with the cached B-splines and the rational Jacobian of quantities up to `order`.
+  template <typename Visit>
+  void for_each_point_of(int e, const TriangularControlNet& net, int order, bool weight_columns,
+                         Visit&& visit) const;
+  template <typename Visit>
+  void for_each_point(const TriangularControlNet& net, int order, bool weight_columns,
+                      Visit&& visit) const;
+  // The B-splines and the rational Jacobian at an arbitrary parameter.
   void jacobian_at(const Eigen::Vector2d& u, const TriangularControlNet& net, int order,
                    bool weight_columns, TriangularRationalJacobian& jacobian,
                    TriangularBasisValues& values) const;

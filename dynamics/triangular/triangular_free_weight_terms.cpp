@@ -1,5 +1,7 @@
 #include "dynamics/triangular/triangular_free_weight_terms.h"
 
+#include <algorithm>
+
 namespace dnurbs {
 
 void add_transposed_jacobian_times(const TriangularBasisValues& basis,
@@ -84,6 +86,35 @@ void scatter_free_weight_block(const AssemblyPattern& pattern, const SparseMatri
       }
     }
   }
+}
+
+void reset_to_pattern(const SparseMatrix& pattern, bool used, SparseMatrix& matrix) {
+  const bool same_structure = matrix.isCompressed() && matrix.rows() == pattern.rows() &&
+                              matrix.cols() == pattern.cols() &&
+                              matrix.nonZeros() == pattern.nonZeros();
+  if (!used) {
+    matrix = SparseMatrix(pattern.rows(), pattern.cols());
+  } else if (same_structure) {
+    Eigen::Map<Eigen::VectorXd>(matrix.valuePtr(), matrix.nonZeros()).setZero();
+  } else {
+    matrix = pattern;
+  }
+}
+
+std::vector<int> block_diagonal_value_indices(const SparseMatrix& scalar,
+                                              const SparseMatrix& blocked, int block_size,
+                                              int component) {
+  std::vector<int> indices;
+  indices.reserve(static_cast<size_t>(scalar.cols()));
+  const auto* outer = scalar.outerIndexPtr();
+  const auto* inner = scalar.innerIndexPtr();
+  for (int i = 0; i < scalar.cols(); ++i) {
+    // The scalar diagonal entry of column i, then its (component, component) entry.
+    const auto* diagonal = std::lower_bound(inner + outer[i], inner + outer[i + 1], i);
+    indices.push_back(dense_block_value_index(blocked, scalar, static_cast<int>(diagonal - inner),
+                                              i, component, component, block_size));
+  }
+  return indices;
 }
 
 }  // namespace dnurbs

@@ -42,4 +42,15 @@ void scatter_free_weight_block(const AssemblyPattern& pattern, const SparseMatri
                                int element, int element_local, const std::vector<double>& block,
                                SparseMatrix& matrix);
 
+/// Prepares `matrix` for accumulation into `pattern`'s entries: the pattern's structure with
+/// zero values (its storage reused when it already has that structure), or an empty matrix of
+/// the same size if `used` is false.
+void reset_to_pattern(const SparseMatrix& pattern, bool used, SparseMatrix& matrix);
+
+/// For every node i, the value index in `blocked` (dense_block_pattern(scalar, block_size)) of
+/// the diagonal entry (block_size i + component, block_size i + component).
+std::vector<int> block_diagonal_value_indices(const SparseMatrix& scalar,
+                                              const SparseMatrix& blocked, int block_size,
+                                              int component);
+
 }  // namespace dnurbs

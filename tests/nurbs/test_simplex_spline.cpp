@@ -131,6 +131,58 @@ TEST(SimplexSplineRecurrence, DerivativesMatchCentralDifferences) {
   }
 }
 
+TEST(SimplexSplineRecurrence, DerivativesOfEveryOrderMatchDifferencesAndVanishBeyondTheDegree) {
+  const Eigen::MatrixX2d knots = eight_knots();
+  for (int count = 4; count <= 7; ++count) {
+    const int m = count - 3;
+    const SimplexSplineSet set(knots, {first_knots(count)});
+    std::mt19937 random(20 + count);
+    std::uniform_real_distribution<double> x(0.3, 1.7);
+    std::uniform_real_distribution<double> y(0.3, 1.3);
+    const double h = 1e-6;
+    Eigen::MatrixXd at;
+    Eigen::MatrixXd plus;
+    Eigen::MatrixXd minus;
+    std::vector<double> scratch;
+    const Eigen::Vector2d d(0.8, 0.6);
+    for (int k = 0; k < 20; ++k) {
+      const Eigen::Vector2d u(x(random), y(random));
+      set.evaluate_derivatives(u, d, 1e-13, m + 1, at, scratch);
+      const double scale = 1.0 + at.cwiseAbs().maxCoeff();
+      // Order m + 1 vanishes inside the pieces (polynomials of degree m).
+      for (int b = 0; b <= m + 1; ++b) {
+        EXPECT_EQ(at(derivative_index(m + 1 - b, b), 0), 0.0);
+      }
+      // d/du of D^(a-1,b) and d/dv of D^(a,b-1) by central differences.
+      for (int direction = 0; direction < 2; ++direction) {
+        const Eigen::Vector2d step = h * Eigen::Vector2d::Unit(direction);
+        set.evaluate_derivatives(u + step, d, 1e-13, m, plus, scratch);
+        set.evaluate_derivatives(u - step, d, 1e-13, m, minus, scratch);
+        for (int total = 1; total <= m; ++total) {
+          for (int b = 0; b <= total; ++b) {
+            const int a = total - b;
+            if ((direction == 0 && a == 0) || (direction == 1 && b == 0)) {
+              continue;
+            }
+            const int lower =
+                direction == 0 ? derivative_index(a - 1, b) : derivative_index(a, b - 1);
+            const double difference = (plus(lower, 0) - minus(lower, 0)) / (2 * h);
+            // Truncation h^2 |D^(total+2) M| and rounding 1e-16 |D^(total-1) M| / h, relative.
+            EXPECT_NEAR(difference, at(derivative_index(a, b), 0), 1e-7 * scale)
+                << "degree " << m << " derivative (" << a << ", " << b << ")";
+          }
+        }
+      }
+      // The first six rows are evaluate()'s.
+      Eigen::Matrix<double, 6, Eigen::Dynamic> six;
+      set.evaluate(u, d, 1e-13, 2, six);
+      Eigen::MatrixXd two;
+      set.evaluate_derivatives(u, d, 1e-13, 2, two, scratch);
+      EXPECT_EQ((six - two).cwiseAbs().maxCoeff(), 0.0);
+    }
+  }
+}
+
 TEST(SimplexSplineNormalization, IntegralIsOneOverMPlusOneTimesMPlusTwo) {
   // Seidel's normalization: integral M(. | V) = 1 / ((m + 1)(m + 2)) for degree m. Integrated
   // by a degree-6 rule on 96^2 sub-triangles of a triangle containing the knots; the spline is
