@@ -2,8 +2,8 @@
 // Quadrature over the domain triangles of a triangular B-spline basis for the triangular
 // D-NURBS model (Qin & Terzopoulos, "Triangular NURBS and their dynamic generalizations",
 // Computer Aided Geometric Design 14, 1997, section 4: M, D and K as integrals over the
-// parametric domain), with the non-zero B-spline values and derivatives cached at every point
-// (they depend only on the knots, never on the state): on a polynomial cell every B-spline is
+// parametric domain), with the non-zero B-splines cached for every point (they depend only on
+// the knots, never on the state): on a polynomial cell every B-spline is
 // one polynomial of degree n, so the cache holds its Taylor coefficients at the cell's centroid
 // (all derivatives up to order n from the recurrence) and the values and derivatives at the
 // cell's points are polynomial evaluations.
