@@ -3,10 +3,10 @@
 // D-NURBS model (Qin & Terzopoulos, "Triangular NURBS and their dynamic generalizations",
 // Computer Aided Geometric Design 14, 1997, section 4: M, D and K as integrals over the
 // parametric domain), with the non-zero B-splines cached for every point (they depend only on
-// the knots, never on the state): on a polynomial cell every B-spline is
-// one polynomial of degree n, so the cache holds its Taylor coefficients at the cell's centroid
-// (all derivatives up to order n from the recurrence) and the values and derivatives at the
-// cell's points are polynomial evaluations.
+// the knots, never on the state): on a polynomial cell every B-spline is one polynomial of
+// degree n, so the cache holds its Taylor coefficients at the cell's centroid (all derivatives
+// up to order n from the recurrence) and the values and derivatives at the cell's points are
+// polynomial evaluations.
 //
 // DMS splines are polynomials of degree n on the cells of the partition of the plane by the
 // segments between knots, which do not follow the domain triangles: every domain triangle is
