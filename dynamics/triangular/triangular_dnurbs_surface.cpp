@@ -1,0 +1,511 @@
+#include "dynamics/triangular/triangular_dnurbs_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/error.h"
+#include "dynamics/triangular/triangular_free_weight_terms.h"
+
+namespace dnurbs {
+
+namespace {
+
+// Element matrices of one domain triangle (local count squared entries, or 16 times that in
+// 4 x 4 blocks for free weights), cleared per element.
+struct ElementMatrices {
+  explicit ElementMatrices(size_t size) : mass(size), damping(size), stiffness(size) {}
+  void clear() {
+    std::fill(mass.begin(), mass.end(), 0.0);
+    std::fill(damping.begin(), damping.end(), 0.0);
+    std::fill(stiffness.begin(), stiffness.end(), 0.0);
+  }
+  std::vector<double> mass;
+  std::vector<double> damping;
+  std::vector<double> stiffness;
+};
+
+}  // namespace
+
+TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& surface,
+                                                 const DNurbsSurfaceMaterial& material,
+                                                 const TriangularDNurbsSettings& settings)
+    : surface_(surface),
+      mode_(settings.weight_mode),
+      per_control_point_(coordinates_per_control_point(settings.weight_mode)),
+      count_(surface.control_point_count()),
+      minimum_weight_(settings.minimum_weight),
+      weight_inertia_(settings.weight_inertia) {
+  // Validate the settings and the weights -------------------------------------------------
+  if (!(minimum_weight_ > 0.0) || !std::isfinite(minimum_weight_)) {
+    throw make_error("minimum weight ", minimum_weight_, " is not a positive finite number");
+  }
+  if (!(weight_inertia_ >= 0.0) || !std::isfinite(weight_inertia_)) {
+    throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
+  }
+  if (settings.quadrature_degree < 0 || settings.quadrature_degree > kMaxDunavantDegree) {
+    throw make_error("quadrature degree ", settings.quadrature_degree, " is outside 0..",
+                     kMaxDunavantDegree, " (0 = 2 n)");
+  }
+  if (settings.quadrature_subdivisions < 0 || settings.quadrature_subdivisions > 64) {
+    throw make_error("quadrature subdivisions ", settings.quadrature_subdivisions,
+                     " is outside 0..64 (0 = exact polynomial cells)");
+  }
+  const Eigen::VectorXd& weights = surface.weights();
+  if (mode_ == WeightMode::kFree) {
+    for (int i = 0; i < count_; ++i) {
+      if (weights[i] < minimum_weight_) {
+        throw make_error("free weight ", i, " is ", weights[i], ", below the minimum weight ",
+                         minimum_weight_);
+      }
+    }
+  }
+
+  // Quadrature points with the cached B-splines (derivatives up to the stiffness order) -----
+  // Stiffness weights of x_u, x_v, x_uu, x_uv, x_vv: the mixed term enters the thin plate
+  // under tension as 2 b11 |x_uv|^2.
+  const std::array<const MaterialFunction*, 6> stiffness = {
+      nullptr, &material.a10, &material.a01, &material.b20, &material.b11, &material.b02};
+  const std::array<double, 6> factor = {0.0, 1.0, 1.0, 1.0, 2.0, 1.0};
+  has_damping_ = !material.damping_density.is_zero();
+  for (int alpha = 1; alpha < 6; ++alpha) {
+    has_stiffness_[static_cast<size_t>(alpha)] = !stiffness[static_cast<size_t>(alpha)]->is_zero();
+  }
+  const int n = surface.basis().degree();
+  const int degree = settings.quadrature_degree > 0 ? settings.quadrature_degree
+                                                    : std::min(2 * n, kMaxDunavantDegree);
+  const int subdivisions = settings.quadrature_subdivisions;
+  // Order 1 is always cached: distributed forces need the tangents.
+  quadrature_ = std::make_shared<const TriangularQuadrature>(
+      surface.shared_basis(), degree, subdivisions, std::max(1, stiffness_order()));
+
+  // Material values at every quadrature point, checked once --------------------------------
+  const std::array<const char*, 6> names = {"", "a10", "a01", "b20", "b11", "b02"};
+  material_.assign(static_cast<size_t>(quadrature_->point_count()) * kMaterialStride, 0.0);
+  for (int p = 0; p < quadrature_->point_count(); ++p) {
+    const Eigen::Vector2d& u = quadrature_->parameter(p);
+    double* m = &material_[static_cast<size_t>(p) * kMaterialStride];
+    m[0] = material.mass_density.checked(u, "mass density", true);
+    m[1] = material.damping_density.checked(u, "damping density", true);
+    for (int alpha = 1; alpha < 6; ++alpha) {
+      if (has_stiffness_[static_cast<size_t>(alpha)]) {
+        const auto k = static_cast<size_t>(alpha);
+        m[1 + alpha] = factor[k] * stiffness[k]->checked(u, names[k], true);
+      }
+    }
+  }
+  pattern_ = quadrature_->assembly_pattern();
+
+  // Coordinates: q = [P_0, P_1, ...] or [P_0, w_0, P_1, w_1, ...] -----------------------------
+  Eigen::MatrixXd stacked(per_control_point_, count_);
+  stacked.topRows<3>() = surface.control_points().transpose();
+  if (mode_ == WeightMode::kFree) {
+    stacked.row(3) = weights.transpose();
+  }
+  initial_coordinates_ = stacked.reshaped();
+  if (mode_ == WeightMode::kFixed) {
+    // Constant matrices S and S (x) I_3, assembled once.
+    fixed_weights_ = weights;
+    assemble_scalar(scalar_);
+    for (auto [scalar, expanded] : {std::pair{&scalar_.mass, &expanded_.mass},
+                                    std::pair{&scalar_.damping, &expanded_.damping},
+                                    std::pair{&scalar_.stiffness, &expanded_.stiffness}}) {
+      *expanded = kronecker_identity(*scalar, 3);
+    }
+    return;
+  }
+  block_pattern_ = dense_block_pattern(pattern_.scalar, 4);
+  weight_diagonal_ = block_diagonal_value_indices(pattern_.scalar, block_pattern_, 4, 3);
+  if (settings.fix_weight_gauge) {
+    fix_weight(0);
+  }
+}
+
+std::unique_ptr<Model> TriangularDNurbsSurface::clone() const {
+  return std::make_unique<TriangularDNurbsSurface>(*this);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Points and Jacobians
+
+TriangularControlNet TriangularDNurbsSurface::control_net(const ConstVectorRef& q) const {
+  if (q.size() != coordinate_count()) {
+    throw make_error("coordinate vector has ", q.size(), " entries, the model has ",
+                     coordinate_count());
+  }
+  // Free weights sit after each point's position in q; fixed ones in their own vector.
+  const bool free = mode_ == WeightMode::kFree;
+  return {q.data(), per_control_point_, free ? q.data() + 3 : fixed_weights_.data(), free ? 4 : 1};
+}
+
+void TriangularDNurbsSurface::check_velocity(const ConstVectorRef& qd) const {
+  if (qd.size() != velocity_count()) {
+    throw make_error("velocity vector has ", qd.size(), " entries, the model has ",
+                     velocity_count());
+  }
+}
+
+int TriangularDNurbsSurface::stiffness_order() const {
+  int order = 0;
+  for (int alpha = 1; alpha < 6; ++alpha) {
+    if (has_stiffness_[static_cast<size_t>(alpha)]) {
+      order = alpha >= 3 ? 2 : std::max(order, 1);
+    }
+  }
+  return order;
+}
+
+template <typename Visit>
+void TriangularDNurbsSurface::for_each_point_of(int e, const TriangularControlNet& net, int order,
+                                                bool weight_columns, Visit&& visit) const {
+  TriangularBasisValues values;
+  TriangularRationalJacobian jacobian;
+  std::vector<int> local;
+  for (int p = quadrature_->element_begin(e); p < quadrature_->element_begin(e + 1); ++p) {
+    quadrature_->basis_at(p, values, local);
+    triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
+    visit(p, values, jacobian, local);
+  }
+}
+
+template <typename Visit>
+void TriangularDNurbsSurface::for_each_point(const TriangularControlNet& net, int order,
+                                             bool weight_columns, Visit&& visit) const {
+  for (int e = 0; e < quadrature_->element_count(); ++e) {
+    for_each_point_of(e, net, order, weight_columns, visit);
+  }
+}
+
+void TriangularDNurbsSurface::jacobian_at(const Eigen::Vector2d& u, const TriangularControlNet& net,
+                                          int order, bool weight_columns,
+                                          TriangularRationalJacobian& jacobian,
+                                          TriangularBasisValues& values) const {
+  surface_.basis().evaluate(u, order, values);
+  triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
+}
+
+Eigen::Vector3d TriangularDNurbsSurface::position(ConstVectorRef q,
+                                                  const Eigen::Vector2d& u) const {
+  TriangularBasisValues values;
+  TriangularRationalJacobian jacobian;
+  jacobian_at(u, control_net(q), 0, false, jacobian, values);
+  return jacobian.point[0];
+}
+
+SparseMatrix TriangularDNurbsSurface::position_jacobian(ConstVectorRef q,
+                                                        const Eigen::Vector2d& u) const {
+  TriangularBasisValues values;
+  TriangularRationalJacobian jacobian;
+  const bool free = mode_ == WeightMode::kFree;
+  jacobian_at(u, control_net(q), 0, free, jacobian, values);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int a = 0; a < values.count; ++a) {
+    if (values.value(0, a) == 0.0) {
+      continue;  // outside the B-spline's support: no coupling
+    }
+    const int offset = values.function[static_cast<size_t>(a)] * per_control_point_;
+    for (int r = 0; r < 3; ++r) {
+      triplets.emplace_back(r, offset + r, jacobian.rational(0, a));
+      if (free) {
+        triplets.emplace_back(r, offset + 3, jacobian.weight_column[0](r, a));
+      }
+    }
+  }
+  SparseMatrix jacobian_matrix(3, velocity_count());
+  jacobian_matrix.setFromTriplets(triplets.begin(), triplets.end());
+  return jacobian_matrix;
+}
+
+Eigen::Vector3d TriangularDNurbsSurface::jacobian_rate_times_velocity(
+    ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u) const {
+  if (mode_ == WeightMode::kFixed) {
+    return Eigen::Vector3d::Zero();
+  }
+  check_velocity(qd);
+  TriangularBasisValues values;
+  TriangularRationalJacobian jacobian;
+  jacobian_at(u, control_net(q), 0, true, jacobian, values);
+  return free_weight_acceleration(values, jacobian, qd);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Matrices
+
+const ModelMatrices* TriangularDNurbsSurface::constant_matrices() const {
+  return mode_ == WeightMode::kFixed ? &expanded_ : nullptr;
+}
+
+const ModelMatrices* TriangularDNurbsSurface::scalar_matrices() const {
+  return mode_ == WeightMode::kFixed ? &scalar_ : nullptr;
+}
+
+void TriangularDNurbsSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {
+  if (mode_ == WeightMode::kFixed) {
+    matrices = expanded_;
+    return;
+  }
+  assemble_free(q, matrices);
+}
+
+void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
+  // Qin & Terzopoulos 1997, section 4, with fixed weights: S_M = integral mu R_a R_b,
+  // S_D = integral gamma R_a R_b, S_K = integral sum_alpha k_alpha R_a^alpha R_b^alpha, each
+  // a sum over the quadrature points of every domain triangle.
+  const int local = pattern_.local_count;
+  ElementMatrices element(static_cast<size_t>(local) * static_cast<size_t>(local));
+  scalar.mass = pattern_.scalar;
+  scalar.stiffness = pattern_.scalar;
+  scalar.damping = has_damping_ ? pattern_.scalar : SparseMatrix(count_, count_);
+  const TriangularControlNet net = control_net(initial_coordinates_);
+  for (int e = 0; e < quadrature_->element_count(); ++e) {
+    element.clear();
+    for_each_point_of(e, net, stiffness_order(), false,
+                      [&](int p, const TriangularBasisValues& values,
+                          const TriangularRationalJacobian& jacobian, const std::vector<int>& at) {
+                        const double weight = quadrature_->weight(p);
+                        const double* m = material_at(p);
+                        const auto& rational = jacobian.rational;
+                        for (int i = 0; i < values.count; ++i) {
+                          const auto row = static_cast<size_t>(at[static_cast<size_t>(i)]) *
+                                           static_cast<size_t>(local);
+                          for (int j = 0; j < values.count; ++j) {
+                            const size_t index =
+                                row + static_cast<size_t>(at[static_cast<size_t>(j)]);
+                            // Products of two basis values first: exactly symmetric matrices.
+                            const double product = weight * (rational(0, i) * rational(0, j));
+                            element.mass[index] += m[0] * product;
+                            element.damping[index] += m[1] * product;
+                            double k = 0.0;
+                            for (int alpha = 1; alpha < 6; ++alpha) {
+                              if (has_stiffness_[static_cast<size_t>(alpha)]) {
+                                k += m[1 + alpha] * (rational(alpha, i) * rational(alpha, j));
+                              }
+                            }
+                            element.stiffness[index] += weight * k;
+                          }
+                        }
+                      });
+    // Scatter the element matrices (only the element's own local pairs) into the pattern.
+    const int element_local = static_cast<int>(quadrature_->element_functions(e).size());
+    const int* to_value = &pattern_.local_to_value[static_cast<size_t>(e) * element.mass.size()];
+    for (int a = 0; a < element_local; ++a) {
+      for (int b = 0; b < element_local; ++b) {
+        const auto i = static_cast<size_t>(a) * static_cast<size_t>(local) + static_cast<size_t>(b);
+        scalar.mass.valuePtr()[to_value[i]] += element.mass[i];
+        scalar.stiffness.valuePtr()[to_value[i]] += element.stiffness[i];
+        if (has_damping_) {
+          scalar.damping.valuePtr()[to_value[i]] += element.damping[i];
+        }
+      }
+    }
+  }
+}
+
+void TriangularDNurbsSurface::assemble_free(const ConstVectorRef& q,
+                                            ModelMatrices& matrices) const {
+  // Free weights: 4 x 4 blocks [[R_a R_b I_3, R_a E_b], [E_a^T R_b, E_a . E_b]] per quantity.
+  const int local = pattern_.local_count;
+  ElementMatrices element(16 * static_cast<size_t>(local) * static_cast<size_t>(local));
+  reset_to_pattern(block_pattern_, true, matrices.mass);
+  reset_to_pattern(block_pattern_, has_damping_, matrices.damping);
+  reset_to_pattern(block_pattern_, true, matrices.stiffness);
+  const TriangularControlNet net = control_net(q);
+  for (int e = 0; e < quadrature_->element_count(); ++e) {
+    element.clear();
+    for_each_point_of(
+        e, net, stiffness_order(), true,
+        [&](int p, const TriangularBasisValues& values, const TriangularRationalJacobian& jacobian,
+            const std::vector<int>& at) {
+          const double weight = quadrature_->weight(p);
+          const double* m = material_at(p);
+          std::array<double, 6> coefficient{};
+          coefficient[0] = weight * m[0];
+          add_free_weight_terms(jacobian, coefficient, values.count, at, local, element.mass);
+          if (has_damping_) {
+            coefficient[0] = weight * m[1];
+            add_free_weight_terms(jacobian, coefficient, values.count, at, local, element.damping);
+          }
+          coefficient[0] = 0.0;
+          for (int alpha = 1; alpha < 6; ++alpha) {
+            coefficient[static_cast<size_t>(alpha)] =
+                has_stiffness_[static_cast<size_t>(alpha)] ? weight * m[1 + alpha] : 0.0;
+          }
+          add_free_weight_terms(jacobian, coefficient, values.count, at, local, element.stiffness);
+        });
+    const int element_local = static_cast<int>(quadrature_->element_functions(e).size());
+    scatter_free_weight_block(pattern_, block_pattern_, e, element_local, element.mass,
+                              matrices.mass);
+    scatter_free_weight_block(pattern_, block_pattern_, e, element_local, element.stiffness,
+                              matrices.stiffness);
+    if (has_damping_) {
+      scatter_free_weight_block(pattern_, block_pattern_, e, element_local, element.damping,
+                                matrices.damping);
+    }
+  }
+  for (const int index : weight_diagonal_) {
+    matrices.mass.valuePtr()[index] += weight_inertia_;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Forces and energy
+
+void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef force) const {
+  if (mode_ == WeightMode::kFixed) {
+    force.noalias() -= expanded_.stiffness * q;
+    return;
+  }
+  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T x^alpha.
+  if (stiffness_order() == 0) {
+    return;
+  }
+  for_each_point(control_net(q), stiffness_order(), true,
+                 [&](int p, const TriangularBasisValues& values,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   const double* m = material_at(p);
+                   for (int alpha = 1; alpha < 6; ++alpha) {
+                     if (has_stiffness_[static_cast<size_t>(alpha)]) {
+                       const Eigen::Vector3d x = quadrature_->weight(p) * m[1 + alpha] *
+                                                 jacobian.point[static_cast<size_t>(alpha)];
+                       add_transposed_jacobian_times(values, jacobian, alpha, true, -x, force);
+                     }
+                   }
+                 });
+}
+
+double TriangularDNurbsSurface::potential_energy(ConstVectorRef q) const {
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2.
+  double energy = 0.0;
+  if (stiffness_order() == 0) {
+    return energy;
+  }
+  for_each_point(control_net(q), stiffness_order(), false,
+                 [&](int p, const TriangularBasisValues&,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   const double* m = material_at(p);
+                   double density = 0.0;
+                   for (int alpha = 1; alpha < 6; ++alpha) {
+                     if (has_stiffness_[static_cast<size_t>(alpha)]) {
+                       density +=
+                           m[1 + alpha] * jacobian.point[static_cast<size_t>(alpha)].squaredNorm();
+                     }
+                   }
+                   energy += 0.5 * quadrature_->weight(p) * density;
+                 });
+  return energy;
+}
+
+void TriangularDNurbsSurface::add_inertial_force(ConstVectorRef q, ConstVectorRef qd,
+                                                 VectorRef force) const {
+  if (mode_ == WeightMode::kFixed) {
+    return;
+  }
+  // g = -integral mu J^T (Jdot qd).
+  check_velocity(qd);
+  for_each_point(control_net(q), 0, true,
+                 [&](int p, const TriangularBasisValues& values,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   const double mu = material_at(p)[0] * quadrature_->weight(p);
+                   const Eigen::Vector3d h = mu * free_weight_acceleration(values, jacobian, qd);
+                   add_transposed_jacobian_times(values, jacobian, 0, true, -h, force);
+                 });
+}
+
+void TriangularDNurbsSurface::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u,
+                                              const Eigen::Vector3d& f, VectorRef force) const {
+  TriangularBasisValues values;
+  TriangularRationalJacobian jacobian;
+  const bool free = mode_ == WeightMode::kFree;
+  jacobian_at(u, control_net(q), 0, free, jacobian, values);
+  add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
+}
+
+void TriangularDNurbsSurface::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
+                                                    VectorRef force) const {
+  // f_q = integral J^T f(u) du by the model's quadrature rule.
+  const bool free = mode_ == WeightMode::kFree;
+  MaterialSample sample;
+  for_each_point(control_net(q), 1, free,
+                 [&](int p, const TriangularBasisValues& values,
+                     const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
+                   sample.parameter = quadrature_->parameter(p);
+                   sample.position = jacobian.point[0];
+                   sample.tangent_u = jacobian.point[1];
+                   sample.tangent_v = jacobian.point[2];
+                   sample.mass_density = material_at(p)[0];
+                   const Eigen::Vector3d f = quadrature_->weight(p) * density(sample);
+                   add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
+                 });
+}
+
+void TriangularDNurbsSurface::project_state(Eigen::Ref<Eigen::VectorXd> q,
+                                            Eigen::Ref<Eigen::VectorXd> qd) const {
+  if (mode_ == WeightMode::kFixed) {
+    return;
+  }
+  for (int i = 0; i < count_; ++i) {
+    double& w = q[4 * i + 3];
+    if (w < minimum_weight_) {
+      w = minimum_weight_;
+      qd[4 * i + 3] = std::max(qd[4 * i + 3], 0.0);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Control points
+
+int TriangularDNurbsSurface::control_point_offset(int i) const {
+  if (i < 0 || i >= count_) {
+    throw make_error("control point index ", i, " is outside 0..", count_ - 1);
+  }
+  return i * per_control_point_;
+}
+
+int TriangularDNurbsSurface::weight_offset(int i) const {
+  if (mode_ != WeightMode::kFree) {
+    throw make_error("weight ", i, " is not a coordinate (weights are fixed)");
+  }
+  return control_point_offset(i) + 3;
+}
+
+void TriangularDNurbsSurface::fix_control_point(int i) {
+  const int offset = control_point_offset(i);
+  for (int c = 0; c < 3; ++c) {
+    fix_coordinate(offset + c);
+  }
+}
+
+void TriangularDNurbsSurface::fix_weight(int i) {
+  fix_coordinate(weight_offset(i));
+}
+
+Eigen::MatrixX3d TriangularDNurbsSurface::control_points(const ConstVectorRef& q) const {
+  const TriangularControlNet net = control_net(q);
+  Eigen::MatrixX3d points(count_, 3);
+  for (int i = 0; i < count_; ++i) {
+    points.row(i) = Eigen::Map<const Eigen::RowVector3d>(
+        net.positions + static_cast<std::ptrdiff_t>(i) * per_control_point_);
+  }
+  return points;
+}
+
+Eigen::VectorXd TriangularDNurbsSurface::weights(const ConstVectorRef& q) const {
+  const TriangularControlNet net = control_net(q);
+  Eigen::VectorXd result(count_);
+  for (int i = 0; i < count_; ++i) {
+    result[i] = net.weights[static_cast<std::ptrdiff_t>(i) * net.weight_stride];
+  }
+  return result;
+}
+
+TriangularNurbsSurface TriangularDNurbsSurface::surface(const ConstVectorRef& q) const {
+  return {surface_.shared_basis(), control_points(q), weights(q)};
+}
+
+double TriangularDNurbsSurface::parametric_measure() const {
+  return surface_.basis().triangulation().domain_area();
+}
+
+}  // namespace dnurbs

@@ -1,0 +1,164 @@
+#pragma once
+// Triangular D-NURBS surfaces (Qin & Terzopoulos, "Triangular NURBS and their dynamic
+// generalizations", Computer Aided Geometric Design 14, 1997): a triangular NURBS surface over
+// an arbitrary triangulated parametric domain whose control points and, optionally, weights are
+// the generalized coordinates of Lagrangian dynamics,
+//
+//   M qdd + D qd + K q = f_q + g,
+//   M = integral mu J^T J,  D = integral gamma J^T J,
+//   K = integral a10 Ju^T Ju + a01 Jv^T Jv + b20 Juu^T Juu + 2 b11 Juv^T Juv + b02 Jvv^T Jvv,
+//   f_q = integral J^T f,   g = -integral mu J^T Jdot qd   (free weights only),
+//
+// the thin plate under tension of the tensor-product D-NURBS (Terzopoulos, "Deformable models:
+// classic, topology-adaptive and generalized formulations", eq. 1.20; Qin & Terzopoulos,
+// "D-NURBS: a physics-based framework for geometric design", IEEE TVCG 2(1) 1996) with the
+// integrals taken over the triangulated domain by Dunavant rules (triangular_quadrature.h).
+//
+// Fixed weights (the default): J does not depend on q and M = S_M (x) I_3 (likewise D, K),
+// assembled once. Free weights: q = [P_0, w_0, P_1, w_1, ...] and M, D, K are re-assembled at
+// every state from the cached B-spline values, into a pattern sized once; the weight gauge,
+// the minimum weight and the weight inertia work as for the tensor-product model
+// (dynamics/dnurbs_model.h).
+//
+// Plate theory: with a10 = a01 = 0 and b20 = b02 = b11 = D the energy of the normal
+// displacement w is (D / 2) integral w_uu^2 + 2 w_uv^2 + w_vv^2, Kirchhoff's plate energy for
+// Poisson's ratio 0, whose Euler-Lagrange equation is D Laplacian^2 w = q (the biharmonic
+// plate). The Poisson term is a null Lagrangian for clamped edges and does not change the
+// moment condition w_nn = 0 of a straight simply supported edge, so the clamped and simply
+// supported plates of any Poisson ratio are reproduced.
+
+#include <memory>
+#include <vector>
+
+#include "dynamics/dnurbs_surface.h"
+#include "dynamics/model.h"
+#include "dynamics/quadrature_assembly.h"
+#include "dynamics/triangular/triangular_quadrature.h"
+#include "nurbs/jacobian.h"
+#include "nurbs/triangular_nurbs_surface.h"
+
+namespace dnurbs {
+
+/// Settings of a triangular D-NURBS surface.
+struct TriangularDNurbsSettings {
+  /// Control points only (q = [P_0, P_1, ...]) or control points and weights
+  /// (q = [P_0, w_0, P_1, w_1, ...]).
+  WeightMode weight_mode = WeightMode::kFixed;
+  /// Degree of the Dunavant rule (1..14); 0 picks 2n, which with exact cells makes M, D, K and
+  /// forces of constant densities exact for non-rational surfaces (for rational ones the
+  /// integrands are rational and the degree is an accuracy knob).
+  int quadrature_degree = 0;
+  /// 0 (the default): the rule on the polynomial cells of every domain triangle (exact, see
+  /// triangular_quadrature.h); s >= 1: a composite rule on s^2 sub-triangles per domain triangle,
+  /// which ignores the knot segments (relative error of K about 0.1 at s = 8 for degree 2).
+  int quadrature_subdivisions = 0;
+  /// Free weights: lower bound, gauge and inertia as DNurbsSettings.
+  double minimum_weight = 1e-3;
+  bool fix_weight_gauge = true;
+  double weight_inertia = 0.0;
+};
+
+/// A triangular D-NURBS surface as a Model. Control point a belongs to B-spline a of the basis
+/// (TriangularBSplineBasis numbering). The material (per unit parametric area) is that of the
+/// tensor-product D-NURBS surface.
+class TriangularDNurbsSurface : public Model {
+ public:
+  /// Throws Error naming the value for bad material values, weights or settings.
+  explicit TriangularDNurbsSurface(const TriangularNurbsSurface& surface,
+                                   const DNurbsSurfaceMaterial& material = {},
+                                   const TriangularDNurbsSettings& settings = {});
+
+  std::unique_ptr<Model> clone() const override;
+  int coordinate_count() const override { return count_ * per_control_point_; }
+  Eigen::VectorXd initial_coordinates() const override { return initial_coordinates_; }
+  int parametric_dimension() const override { return 2; }
+
+  Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  SparseMatrix position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  /// (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot) (free weights; zero for fixed weights).
+  Eigen::Vector3d jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
+                                               const Eigen::Vector2d& u) const override;
+
+  bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
+  const ModelMatrices* constant_matrices() const override;
+  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const override;
+  int kronecker_block_size() const override { return mode_ == WeightMode::kFixed ? 3 : 0; }
+  const ModelMatrices* scalar_matrices() const override;
+
+  void add_internal_force(ConstVectorRef q, VectorRef force) const override;
+  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2.
+  double potential_energy(ConstVectorRef q) const override;
+  /// g = -integral mu J^T Jdot qd (free weights; nothing for fixed weights).
+  void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
+  void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
+                       VectorRef force) const override;
+  void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
+                             VectorRef force) const override;
+  void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
+  int control_point_offset(int i) const override;
+
+  WeightMode weight_mode() const { return mode_; }
+  int control_point_count() const { return count_; }
+  double minimum_weight() const { return minimum_weight_; }
+  /// Velocity-space index of weight i (free weights only; throws Error otherwise).
+  int weight_offset(int i) const;
+  void fix_control_point(int i);
+  void fix_weight(int i);
+  /// Control points (count by 3) and weights (count) at q.
+  Eigen::MatrixX3d control_points(const ConstVectorRef& q) const;
+  Eigen::VectorXd weights(const ConstVectorRef& q) const;
+  /// The triangular NURBS surface at q.
+  TriangularNurbsSurface surface(const ConstVectorRef& q) const;
+  const TriangularNurbsSurface& initial_surface() const { return surface_; }
+  const TriangularQuadrature& quadrature() const { return *quadrature_; }
+  /// Area of the parametric domain.
+  double parametric_measure() const;
+
+ private:
+  // Material at point p: material_[p * kMaterialStride + 0] = mu, [+1] = gamma,
+  // [+1 + alpha] = k_alpha (alpha = 1..5).
+  static constexpr int kMaterialStride = 7;
+
+  TriangularControlNet control_net(const ConstVectorRef& q) const;
+  void check_velocity(const ConstVectorRef& qd) const;
+  const double* material_at(int p) const {
+    return &material_[static_cast<size_t>(p) * kMaterialStride];
+  }
+  int stiffness_order() const;
+  // Calls visit(p, values, jacobian, local) at every quadrature point p of element e (or of all
+  // elements) with the cached B-splines and the rational Jacobian of quantities up to `order`.
+  template <typename Visit>
+  void for_each_point_of(int e, const TriangularControlNet& net, int order, bool weight_columns,
+                         Visit&& visit) const;
+  template <typename Visit>
+  void for_each_point(const TriangularControlNet& net, int order, bool weight_columns,
+                      Visit&& visit) const;
+  // The B-splines and the rational Jacobian at an arbitrary parameter.
+  void jacobian_at(const Eigen::Vector2d& u, const TriangularControlNet& net, int order,
+                   bool weight_columns, TriangularRationalJacobian& jacobian,
+                   TriangularBasisValues& values) const;
+  void assemble_scalar(ModelMatrices& scalar) const;
+  void assemble_free(const ConstVectorRef& q, ModelMatrices& matrices) const;
+
+  TriangularNurbsSurface surface_;
+  std::shared_ptr<const TriangularQuadrature> quadrature_;  // immutable, shared by clones
+  WeightMode mode_ = WeightMode::kFixed;
+  int per_control_point_ = 3;
+  int count_ = 0;
+  double minimum_weight_ = 1e-3;
+  double weight_inertia_ = 0.0;
+  bool has_damping_ = false;
+  std::array<bool, 6> has_stiffness_{};
+  std::vector<double> material_;
+  Eigen::VectorXd fixed_weights_;
+  Eigen::VectorXd initial_coordinates_;
+  AssemblyPattern pattern_;
+  // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once.
+  ModelMatrices scalar_;
+  ModelMatrices expanded_;
+  // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry.
+  SparseMatrix block_pattern_;
+  std::vector<int> weight_diagonal_;
+};
+
+}  // namespace dnurbs
