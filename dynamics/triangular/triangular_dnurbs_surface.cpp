@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 #include "dynamics/triangular/triangular_free_weight_terms.h"
 
 namespace dnurbs {

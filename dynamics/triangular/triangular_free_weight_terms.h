@@ -8,8 +8,8 @@
 #include <array>
 #include <vector>
 
-#include "dynamics/model.h"
-#include "dynamics/quadrature_assembly.h"
+#include "dynamics/core/model.h"
+#include "dynamics/core/quadrature_assembly.h"
 #include "nurbs/triangular_nurbs_surface.h"
 
 namespace dnurbs {

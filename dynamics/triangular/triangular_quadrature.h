@@ -34,7 +34,7 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/quadrature_assembly.h"
+#include "dynamics/core/quadrature_assembly.h"
 #include "nurbs/dunavant_rules.h"
 #include "nurbs/triangular_bspline_basis.h"
 

@@ -11,9 +11,9 @@
 #include <Eigen/Dense>
 
 #include "core/error.h"
-#include "dynamics/forces.h"
-#include "dynamics/integrator.h"
-#include "dynamics/static_equilibrium.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/integrators/static_equilibrium.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {
