@@ -25,6 +25,10 @@ SparseMatrix FreeCoordinates::reduce(const SparseMatrix& matrix) const {
     return matrix;
   }
   SparseMatrix result(free_count(), free_count());
+  if (free_count() == 0) {
+    // Eigen's makeCompressed reads one past the outer index of a reserved 0 x 0 matrix.
+    return result;
+  }
   Eigen::VectorXi sizes = Eigen::VectorXi::Zero(free_count());
   for (Eigen::Index j = 0; j < matrix.outerSize(); ++j) {
     const int fj = free_index(static_cast<int>(j));

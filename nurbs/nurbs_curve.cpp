@@ -9,16 +9,19 @@
 
 namespace dnurbs {
 
-NurbsCurve::NurbsCurve(KnotVector knots, const Eigen::MatrixX3d& control_points,
-                       const Eigen::VectorXd& weights)
+NurbsCurve::NurbsCurve(KnotVector knots, Eigen::MatrixX3d control_points, Eigen::VectorXd weights)
     : knots_(std::move(knots)) {
   const int count = knots_.control_point_count();
   if (control_points.rows() != count) {
     throw make_error("curve of degree ", knots_.degree(), " with ", knots_.size(), " knots needs ",
                      count, " control points, got ", control_points.rows());
   }
-  set_control_points(control_points);
-  set_weights(weights.size() == 0 ? Eigen::VectorXd::Ones(count) : weights);
+  check_control_points(control_points, count);
+  control_points_ = std::move(control_points);
+  if (weights.size() == 0) {
+    weights = Eigen::VectorXd::Ones(count);
+  }
+  set_weights(weights);
 }
 
 void NurbsCurve::set_control_points(const Eigen::MatrixX3d& control_points) {

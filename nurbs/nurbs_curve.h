@@ -21,8 +21,7 @@ class NurbsCurve {
  public:
   /// `control_points` n by 3 with n = knots.control_point_count(); `weights` of size n (all > 0)
   /// or empty for a non-rational curve. Throws Error naming the bad value otherwise.
-  NurbsCurve(KnotVector knots, const Eigen::MatrixX3d& control_points,
-             const Eigen::VectorXd& weights = {});
+  NurbsCurve(KnotVector knots, Eigen::MatrixX3d control_points, Eigen::VectorXd weights = {});
 
   int degree() const { return knots_.degree(); }
   const KnotVector& knots() const { return knots_; }

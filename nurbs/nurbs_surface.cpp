@@ -33,8 +33,8 @@ void SurfaceDerivatives::reset(int order) {
   }
 }
 
-NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v,
-                           const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights)
+NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v, Eigen::MatrixX3d control_points,
+                           Eigen::VectorXd weights)
     : knots_u_(std::move(knots_u)), knots_v_(std::move(knots_v)) {
   const int count = knots_u_.control_point_count() * knots_v_.control_point_count();
   if (control_points.rows() != count) {
@@ -42,8 +42,12 @@ NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v,
                      knots_v_.control_point_count(), " = ", count, " control points, got ",
                      control_points.rows());
   }
-  set_control_points(control_points);
-  set_weights(weights.size() == 0 ? Eigen::VectorXd::Ones(count) : weights);
+  check_control_points(control_points, count);
+  control_points_ = std::move(control_points);
+  if (weights.size() == 0) {
+    weights = Eigen::VectorXd::Ones(count);
+  }
+  set_weights(weights);
 }
 
 void NurbsSurface::set_control_points(const Eigen::MatrixX3d& control_points) {

@@ -45,8 +45,8 @@ class NurbsSurface {
  public:
   /// `control_points` has knots_u.control_point_count() * knots_v.control_point_count() rows;
   /// `weights` the same count (all > 0) or empty for a non-rational surface.
-  NurbsSurface(KnotVector knots_u, KnotVector knots_v, const Eigen::MatrixX3d& control_points,
-               const Eigen::VectorXd& weights = {});
+  NurbsSurface(KnotVector knots_u, KnotVector knots_v, Eigen::MatrixX3d control_points,
+               Eigen::VectorXd weights = {});
 
   int degree_u() const { return knots_u_.degree(); }
   int degree_v() const { return knots_v_.degree(); }
