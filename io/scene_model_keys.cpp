@@ -12,10 +12,10 @@ void check_model_keys(const SceneReader& reader, const JsonValue& model, const s
 }
 
 JsonValue model_material(const SceneReader& reader, const JsonValue& model, const std::string& path,
-                         std::initializer_list<const char*> allowed) {
+                         const std::vector<const char*>& allowed) {
   const JsonValue* material = reader.find(model, "material");
   JsonValue result = material != nullptr ? *material : JsonValue::object();
-  reader.object(result, join_json_path(path, "material"), allowed);
+  reader.object(result, join_json_path(path, "material"), allowed, "");
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/scene_reader.h"
 #include "io/scene_spec.h"
@@ -21,7 +22,7 @@ void check_model_keys(const SceneReader& reader, const JsonValue& model, const s
 /// The model's "material" object, an empty object when absent, after checking that it has
 /// only the keys `allowed`.
 JsonValue model_material(const SceneReader& reader, const JsonValue& model, const std::string& path,
-                         std::initializer_list<const char*> allowed);
+                         const std::vector<const char*>& allowed);
 
 /// The "fit" object of a model, if present: `dnurbs` selects the D-NURBS keys (degree, spans,
 /// smoothness, iterations) or the superquadric ones (max_evaluations); `instead_of` are the keys

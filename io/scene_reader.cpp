@@ -1,5 +1,7 @@
 #include "io/scene_reader.h"
 
+#include <functional>
+
 #include <utility>
 
 #include "core/error.h"
@@ -55,15 +57,7 @@ void SceneReader::fail(const std::string& path, const std::string& message) cons
 
 void SceneReader::object(const JsonValue& value, const std::string& path,
                          std::initializer_list<const char*> allowed) const {
-  if (!value.is_object()) {
-    fail(path, "expected an object, got " + describe_json_value(value));
-  }
-  for (const auto& item : value.items()) {
-    if (!contains(allowed, item.key())) {
-      fail(join_json_path(path, item.key()),
-           "unknown key (expected only " + list_of(allowed) + ")");
-    }
-  }
+  object(value, path, std::vector<const char*>(allowed), "");
 }
 
 void SceneReader::object(const JsonValue& value, const std::string& path,
@@ -71,10 +65,11 @@ void SceneReader::object(const JsonValue& value, const std::string& path,
   if (!value.is_object()) {
     fail(path, "expected an object, got " + describe_json_value(value));
   }
+  const std::string owner = what.empty() ? "" : " for " + what;
   for (const auto& item : value.items()) {
     if (!contains(allowed, item.key())) {
       fail(join_json_path(path, item.key()),
-           "unknown key for " + what + " (expected only " + list_of(allowed) + ")");
+           "unknown key" + owner + " (expected only " + list_of(allowed) + ")");
     }
   }
 }
@@ -195,8 +190,8 @@ Eigen::Vector2d SceneReader::parameter(const JsonValue& value, const std::string
 
 Eigen::Matrix2d SceneReader::matrix2(const JsonValue& value, const std::string& path) const {
   if (!value.is_array() || value.size() != 2) {
-    fail(path, "expected a 2 x 2 matrix [[m11, m12], [m21, m22]], got " +
-                   describe_json_value(value));
+    fail(path,
+         "expected a 2 x 2 matrix [[m11, m12], [m21, m22]], got " + describe_json_value(value));
   }
   Eigen::Matrix2d m;
   for (size_t r = 0; r < 2; ++r) {
@@ -246,46 +241,40 @@ void SceneReader::times(const JsonValue& object, const std::string& path,
   }
 }
 
-VectorSchedule SceneReader::vector_schedule(const JsonValue& value, const std::string& path) const {
-  VectorSchedule schedule;
-  if (value.is_array()) {
-    schedule.values.push_back(point(value, path));
+template <typename Schedule, typename ReadValue>
+Schedule SceneReader::schedule(const JsonValue& value, const std::string& path, bool constant,
+                               const char* expected, const char* of,
+                               const ReadValue& read_value) const {
+  Schedule schedule;
+  if (constant) {
+    schedule.values.push_back(read_value(value, path));
     return schedule;
   }
   if (!value.is_object()) {
-    fail(path, "expected [x, y, z] or {\"times\": [...], \"values\": [[x, y, z], ...]}, got " +
-                   describe_json_value(value));
+    fail(path, std::string("expected ") + expected + ", got " + describe_json_value(value));
   }
   object(value, path, {"times", "values"});
   const std::string values_path = join_json_path(path, "values");
-  const JsonValue& values = array(require(value, path, "values", "an array of [x, y, z] values"),
-                                  values_path, "[x, y, z] values");
+  const JsonValue& values =
+      array(require(value, path, "values", std::string("an array of ") + of), values_path, of);
   for (size_t i = 0; i < values.size(); ++i) {
-    schedule.values.push_back(point(values[i], json_index_path(values_path, i)));
+    schedule.values.push_back(read_value(values[i], json_index_path(values_path, i)));
   }
   times(value, path, schedule.times, values.size());
   return schedule;
 }
 
+VectorSchedule SceneReader::vector_schedule(const JsonValue& value, const std::string& path) const {
+  return schedule<VectorSchedule>(
+      value, path, value.is_array(),
+      "[x, y, z] or {\"times\": [...], \"values\": [[x, y, z], ...]}", "[x, y, z] values",
+      [this](const JsonValue& v, const std::string& p) { return point(v, p); });
+}
+
 ScalarSchedule SceneReader::scalar_schedule(const JsonValue& value, const std::string& path) const {
-  ScalarSchedule schedule;
-  if (value.is_number()) {
-    schedule.values.push_back(number(value, path));
-    return schedule;
-  }
-  if (!value.is_object()) {
-    fail(path, "expected a number or {\"times\": [...], \"values\": [...]}, got " +
-                   describe_json_value(value));
-  }
-  object(value, path, {"times", "values"});
-  const std::string values_path = join_json_path(path, "values");
-  const JsonValue& values =
-      array(require(value, path, "values", "an array of numbers"), values_path, "numbers");
-  for (size_t i = 0; i < values.size(); ++i) {
-    schedule.values.push_back(number(values[i], json_index_path(values_path, i)));
-  }
-  times(value, path, schedule.times, values.size());
-  return schedule;
+  return schedule<ScalarSchedule>(
+      value, path, value.is_number(), "a number or {\"times\": [...], \"values\": [...]}",
+      "numbers", [this](const JsonValue& v, const std::string& p) { return number(v, p); });
 }
 
 int ModelNames::resolve(const SceneReader& reader, const JsonValue& value,
@@ -308,8 +297,8 @@ int ModelNames::resolve(const SceneReader& reader, const JsonValue& value,
   return value.get<int>();
 }
 
-int ModelNames::require(const SceneReader& reader, const JsonValue& object,
-                        const std::string& path, const char* key) const {
+int ModelNames::require(const SceneReader& reader, const JsonValue& object, const std::string& path,
+                        const char* key) const {
   return resolve(reader, reader.require(object, path, key, "a model index or name"),
                  join_json_path(path, key));
 }

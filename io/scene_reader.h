@@ -41,7 +41,8 @@ class SceneReader {
   void object(const JsonValue& value, const std::string& path,
               std::initializer_list<const char*> allowed) const;
   /// The same with the keys in a vector, and `what` naming the object in the message ("a
-  /// snake model": "unknown key for a snake model (expected only ...)").
+  /// snake model": "unknown key for a snake model (expected only ...)"; empty: "unknown key
+  /// (expected only ...)").
   void object(const JsonValue& value, const std::string& path,
               const std::vector<const char*>& allowed, const std::string& what) const;
   /// The key's value, or nullptr when absent.
@@ -99,6 +100,11 @@ class SceneReader {
   double element(const JsonValue& array, const std::string& path, int i) const;
   void times(const JsonValue& object, const std::string& path, std::vector<double>& times,
              size_t value_count) const;
+  /// A schedule: a constant (when `constant`) or keyframes {"times": [...], "values": [...]},
+  /// each value read by read_value(json, path); `expected` and `of` name them in messages.
+  template <typename Schedule, typename ReadValue>
+  Schedule schedule(const JsonValue& value, const std::string& path, bool constant,
+                    const char* expected, const char* of, const ReadValue& read_value) const;
 
   std::string source_;
   std::filesystem::path directory_;

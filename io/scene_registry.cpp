@@ -25,12 +25,14 @@ std::vector<SceneModelType>& model_types() {
 
 }  // namespace
 
-const std::vector<SceneModelType>& scene_model_types() { return model_types(); }
+const std::vector<SceneModelType>& scene_model_types() {
+  return model_types();
+}
 
 void register_scene_model_type(const SceneModelType& type) {
   const std::string name = type.name != nullptr ? type.name : "";
-  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") !=
-                          std::string::npos) {
+  if (name.empty() ||
+      name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos) {
     throw make_error("scene model type name \"", name,
                      "\" is not a non-empty name of lower-case letters, digits and _");
   }
@@ -58,12 +60,12 @@ const std::vector<SceneForceType>& scene_force_types() {
 
 const std::vector<SceneConstraintType>& scene_constraint_types() {
   static const std::vector<SceneConstraintType> types = {
-      {"point_target", &read_point_target_constraint},
-      {"point_to_point", &read_point_to_point_constraint},
-      {"hinge", &read_hinge_constraint},
-      {"control_point", &read_control_point_constraint},
-      {"surface_normal", &read_surface_normal_constraint},
-      {"curve_on_surface", &read_curve_on_surface_constraint},
+      {"point_target", &ScenePointTargetConstraint::read},
+      {"point_to_point", &ScenePointToPointConstraint::read},
+      {"hinge", &SceneHingeConstraint::read},
+      {"control_point", &SceneControlPointConstraint::read},
+      {"surface_normal", &SceneSurfaceNormalConstraint::read},
+      {"curve_on_surface", &SceneCurveOnSurfaceConstraint::read},
   };
   return types;
 }

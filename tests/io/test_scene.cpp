@@ -16,8 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "io/models/dnurbs_curve_scene.h"
-#include "io/models/dnurbs_surface_scene.h"
+#include "io/models/dnurbs_scene.h"
 #include "io/scene_constraints.h"
 #include "io/scene_fit.h"
 #include "io/scene_forces.h"

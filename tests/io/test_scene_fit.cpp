@@ -13,8 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
-#include "io/models/dnurbs_curve_scene.h"
-#include "io/models/dnurbs_surface_scene.h"
+#include "io/models/dnurbs_scene.h"
 #include "io/models/superquadric_scene.h"
 #include "io/scene.h"
 #include "io/scene_fit.h"
