@@ -99,9 +99,9 @@ void SurfaceNormalConstraint::evaluate(const System& system, ConstVectorRef q, C
     const Eigen::Vector3d along_v = e.cross(Su);
     for (size_t j = 0; j < tangents.columns.size(); ++j) {
       const auto column = static_cast<Eigen::Index>(j);
-      rows.jacobian->emplace_back(row, view.velocity_offset + tangents.columns[j],
-                                  tangents.ju.col(column).dot(along_u) +
-                                      tangents.jv.col(column).dot(along_v));
+      rows.jacobian->emplace_back(
+          row, view.velocity_offset + tangents.columns[j],
+          tangents.ju.col(column).dot(along_u) + tangents.jv.col(column).dot(along_v));
     }
   }
 }
@@ -112,8 +112,8 @@ std::vector<std::unique_ptr<Constraint>> curve_on_surface_constraints(const Syst
                                                                       int sample_count) {
   const auto surface = exact<NurbsSurface>(system, surface_model, "curve on surface",
                                            "NURBS surface (Model::exact_shape)");
-  const auto curve =
-      exact<NurbsCurve>(system, curve_model, "curve on surface", "NURBS curve (Model::exact_shape)");
+  const auto curve = exact<NurbsCurve>(system, curve_model, "curve on surface",
+                                       "NURBS curve (Model::exact_shape)");
   if (sample_count < 1) {
     throw make_error("curve on surface: sample count ", sample_count, " must be at least 1");
   }

@@ -35,9 +35,10 @@ class SurfaceNormalConstraint : public Constraint {
 };
 
 /// Ball joints that hold a curve model (`curve_model`) on a surface model (`surface_model`), both
-/// with an exact NURBS shape (Model::exact_shape: D-NURBS curves and surfaces), at `sample_count` curve parameters spread evenly over its domain. Each
-/// sample is joined to the surface point nearest to it at the system's current state (closest
-/// point projection), so a curve drawn near the surface is glued where it lies.
+/// with an exact NURBS shape (Model::exact_shape: D-NURBS curves and surfaces), at `sample_count`
+/// curve parameters spread evenly over its domain. Each sample is joined to the surface point
+/// nearest to it at the system's current state (closest point projection), so a curve drawn near
+/// the surface is glued where it lies.
 std::vector<std::unique_ptr<Constraint>> curve_on_surface_constraints(const System& system,
                                                                       int curve_model,
                                                                       int surface_model,

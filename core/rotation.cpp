@@ -16,7 +16,8 @@ Eigen::Quaterniond unit_quaternion(const Eigen::Ref<const Eigen::Vector4d>& coor
   const double norm = coordinates.norm();
   if (!(norm > 0.0) || !std::isfinite(norm)) {
     throw make_error("quaternion (", coordinates[0], ", ", coordinates[1], ", ", coordinates[2],
-                     ", ", coordinates[3], ") has norm ", norm, " (expected a finite non-zero norm)");
+                     ", ", coordinates[3], ") has norm ", norm,
+                     " (expected a finite non-zero norm)");
   }
   return Eigen::Quaterniond(coordinates[0] / norm, coordinates[1] / norm, coordinates[2] / norm,
                             coordinates[3] / norm);

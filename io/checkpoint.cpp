@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_write.h"
 #include "core/error.h"
+#include "io/atomic_write.h"
 
 namespace dnurbs {
 namespace {

@@ -17,8 +17,8 @@ class ClonePtr {
   ClonePtr() = default;
   /// Takes ownership of a T or of a type derived from it (implicit, like unique_ptr's own).
   template <typename U>
-    requires std::is_convertible_v<U*, T*>
-  ClonePtr(std::unique_ptr<U> value) : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
+  requires std::is_convertible_v<U*, T*> ClonePtr(std::unique_ptr<U> value)
+      : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
   ClonePtr(const ClonePtr& other) : value_(other.value_ ? other.value_->clone() : nullptr) {}
   ClonePtr& operator=(const ClonePtr& other) {
     if (this != &other) {

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <utility>
 
-#include "io/atomic_write.h"
 #include "core/error.h"
+#include "io/atomic_write.h"
 
 namespace dnurbs {
 

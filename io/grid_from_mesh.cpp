@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "io/mesh_import.h"
 #include "core/error.h"
+#include "io/mesh_import.h"
 
 namespace dnurbs {
 namespace {

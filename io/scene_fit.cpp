@@ -8,10 +8,10 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "core/error.h"
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "io/mesh_import.h"
-#include "core/error.h"
 
 namespace dnurbs {
 

@@ -120,8 +120,8 @@ void SceneControlPointForce::apply(System& system, double start, double end) con
       throw SceneKeyError(".control_points[" + std::to_string(k) + "]", error.what());
     }
   }
-  system.add_force(model,
-                   windowed(control_point_force(control_points, vector_of_time(force)), start, end));
+  system.add_force(
+      model, windowed(control_point_force(control_points, vector_of_time(force)), start, end));
 }
 
 bool SceneControlPointForce::add_to_region(int index, SculptedRegion& region) const {
@@ -208,9 +208,9 @@ std::unique_ptr<SceneForceSpec> read_pressure(const SceneReader& reader, const M
   reader.object(force, path, {"type", "model", "pressure", "start", "end"});
   auto spec = std::make_unique<ScenePressure>();
   spec->model = names.require(reader, force, path, "model");
-  spec->pressure = reader.scalar_schedule(
-      reader.require(force, path, "pressure", "a number or keyframes"),
-      join_json_path(path, "pressure"));
+  spec->pressure =
+      reader.scalar_schedule(reader.require(force, path, "pressure", "a number or keyframes"),
+                             join_json_path(path, "pressure"));
   return spec;
 }
 

@@ -5,10 +5,10 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/error.h"
 #include "io/csv_log.h"
 #include "io/mesh_export.h"
 #include "io/shape_file.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -2,7 +2,9 @@
 
 namespace dnurbs {
 
-JsonOut parameter_json(const Eigen::Vector2d& u) { return JsonOut{u.x(), u.y()}; }
+JsonOut parameter_json(const Eigen::Vector2d& u) {
+  return JsonOut{u.x(), u.y()};
+}
 
 JsonOut matrix2_json(const Eigen::Matrix2d& m) {
   return JsonOut{{m(0, 0), m(0, 1)}, {m(1, 0), m(1, 1)}};

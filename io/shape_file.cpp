@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "io/atomic_write.h"
 #include "io/json_messages.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {

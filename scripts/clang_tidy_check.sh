@@ -2,7 +2,8 @@
 # clang-tidy with the repository's .clang-tidy over every library and tool source (CI runs it):
 # needs a build directory configured with CMAKE_EXPORT_COMPILE_COMMANDS=ON (scripts/build.sh does
 # that). Any warning fails the check. Also checks the size limits of the library: no file over
-# 600 lines (functions over 120 lines are clang-tidy's readability-function-size).
+# 600 lines (functions over 120 lines are clang-tidy's readability-function-size), and that
+# every C++ file of the library, tools, tests, benchmarks and examples is clang-format clean.
 # Usage: scripts/clang_tidy_check.sh [BUILD_DIR]; JOBS=N runs N clang-tidy processes.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -22,6 +23,14 @@ while IFS= read -r file; do
     status=1
   fi
 done < <(find "${existing[@]}" -name '*.cpp' -o -name '*.h' | sort)
+formatted=(tests bench examples)
+unformatted="$(find "${existing[@]}" "${formatted[@]}" -name '*.cpp' -o -name '*.h' | sort |
+  xargs clang-format --dry-run 2>&1 | grep -E "warning:" | cut -d: -f1 | sort -u || true)"
+if [ -n "$unformatted" ]; then
+  echo "clang_tidy_check: not clang-format clean (run clang-format -i on them):" >&2
+  echo "$unformatted" >&2
+  status=1
+fi
 start=$(date +%s)
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT

@@ -15,6 +15,7 @@ packages=(
   libpng-dev             # vision/: PNG images for T-snakes (libpng's simplified API)
   zlib1g-dev             # vision/: gzip-encoded NRRD volumes for T-surfaces
   libgtest-dev libgmock-dev
+  clang-tidy clang-format  # CI's style checks (scripts/clang_tidy_check.sh)
   libbenchmark-dev       # bench/
   python3 python3-matplotlib python3-numpy  # PNG previews and bench plots
 )

@@ -3,8 +3,8 @@
 #include <sstream>
 #include <variant>
 
-#include "io/shape_file.h"
 #include "core/error.h"
+#include "io/shape_file.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/error.h"
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "design/superquadric_fitting.h"
@@ -13,7 +14,6 @@
 #include "io/mesh_export.h"
 #include "io/scene_fit.h"
 #include "io/shape_file.h"
-#include "core/error.h"
 #include "surface/parametric_surface.h"
 #include "surface/parametric_surface_tessellation.h"
 #include "surface/tessellation.h"

@@ -8,10 +8,10 @@
 #include <optional>
 #include <sstream>
 
+#include "core/error.h"
 #include "io/scene.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
-#include "core/error.h"
 #include "tools/command_line.h"
 #include "tools/mesh_commands.h"
 

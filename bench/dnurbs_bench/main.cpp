@@ -11,9 +11,9 @@
 #include <string>
 
 #include "bench_support.h"
+#include "core/error.h"
 #include "machine.h"
 #include "needs.h"
-#include "core/error.h"
 #include "scaling.h"
 #include "work_precision.h"
 

@@ -3,8 +3,8 @@
 
 #include <functional>
 
-#include "dynamics/integrators/integrator.h"
 #include "dynamics/core/system.h"
+#include "dynamics/integrators/integrator.h"
 
 namespace dnurbs::bench {
 

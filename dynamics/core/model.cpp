@@ -52,7 +52,8 @@ int Model::control_point_offset(int i) const {
 }
 
 void Model::tangent_kinematics(ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
-                               const Eigen::Vector2d& /*u*/, TangentKinematics& /*tangents*/) const {
+                               const Eigen::Vector2d& /*u*/,
+                               TangentKinematics& /*tangents*/) const {
   throw make_error("this model (parametric dimension ", parametric_dimension(),
                    ") gives no surface tangents and their Jacobians");
 }
@@ -79,7 +80,9 @@ ParameterDomain Model::parameter_domain(ConstVectorRef /*q*/) const {
                    ") has no known parameter domain");
 }
 
-std::optional<Shape> Model::exact_shape(ConstVectorRef /*q*/) const { return std::nullopt; }
+std::optional<Shape> Model::exact_shape(ConstVectorRef /*q*/) const {
+  return std::nullopt;
+}
 
 void Model::fix_point(int i) {
   const int nodes = coordinate_count() / 3;
@@ -93,8 +96,8 @@ void Model::fix_point(int i) {
 }
 
 void Model::fix_border() {
-  throw make_error("this model has no border to fix (parametric dimension ",
-                   parametric_dimension(), ")");
+  throw make_error("this model has no border to fix (parametric dimension ", parametric_dimension(),
+                   ")");
 }
 
 int Model::freeze_outside(const SculptedRegion& /*region*/, int /*margin*/) {

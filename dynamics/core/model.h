@@ -79,7 +79,7 @@ struct TangentKinematics {
 /// [c (3) | unit quaternion (w, x, y, z) (4)] and its velocities [cdot (3) | body angular
 /// velocity (3)], its mass properties constant and its damping mass-proportional.
 struct RigidBodyProperties {
-  RigidMassProperties mass;   ///< reference mass properties (body frame)
+  RigidMassProperties mass;    ///< reference mass properties (body frame)
   double damping_alpha = 0.0;  ///< Rayleigh mass coefficient: D = alpha M
 };
 

@@ -78,8 +78,8 @@ double curve_tube_radius(const Model& model, ConstVectorRef q) {
 
 int minimum_segments(const ParameterDomain& domain, bool along_v) {
   const bool periodic = along_v ? domain.periodic_v : domain.periodic_u;
-  const bool poles = along_v ? domain.pole_v_min && domain.pole_v_max
-                             : domain.pole_u_min && domain.pole_u_max;
+  const bool poles =
+      along_v ? domain.pole_v_min && domain.pole_v_max : domain.pole_u_min && domain.pole_u_max;
   return periodic ? 3 : poles ? 2 : 1;
 }
 
@@ -103,7 +103,8 @@ ParametricSurface sampled_model_surface(const Model& model, ConstVectorRef q,
 
 TriangleMesh polyline_tube(const Eigen::MatrixX3d& points, bool closed, double radius, int sides,
                            std::string name) {
-  const int segments = closed ? static_cast<int>(points.rows()) : static_cast<int>(points.rows()) - 1;
+  const int segments =
+      closed ? static_cast<int>(points.rows()) : static_cast<int>(points.rows()) - 1;
   return tessellate_curve_tube(polyline(points, closed), segments, radius, sides, std::move(name));
 }
 

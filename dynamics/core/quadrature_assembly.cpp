@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "nurbs/basis_functions.h"
 #include "core/error.h"
+#include "nurbs/basis_functions.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {

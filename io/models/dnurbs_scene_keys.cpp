@@ -56,8 +56,7 @@ ShapeType read_scene_shape(const SceneReader& reader, const JsonValue& model,
 template NurbsCurve read_scene_shape<NurbsCurve>(const SceneReader&, const JsonValue&,
                                                  const std::string&, std::string&, const char*);
 template NurbsSurface read_scene_shape<NurbsSurface>(const SceneReader&, const JsonValue&,
-                                                     const std::string&, std::string&,
-                                                     const char*);
+                                                     const std::string&, std::string&, const char*);
 
 void write_scene_shape(const std::optional<Shape>& shape, const std::string& shape_file,
                        const std::optional<SceneFit>& fit, JsonOut& model) {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "dynamics/dnurbs/dnurbs_model.h"
-#include "io/scene_reader.h"
 #include "io/scene_model_keys.h"
+#include "io/scene_reader.h"
 #include "io/scene_spec.h"
 #include "io/scene_writer.h"
 #include "io/shape_file.h"

@@ -4,7 +4,9 @@
 
 namespace dnurbs {
 
-Grid SceneGrid::grid() const { return Grid(nodes_u, nodes_v, spacing, 3); }
+Grid SceneGrid::grid() const {
+  return Grid(nodes_u, nodes_v, spacing, 3);
+}
 
 NodePositions SceneGrid::rest_positions() const {
   return flat_grid_positions(grid(), origin, axis_u, axis_v);

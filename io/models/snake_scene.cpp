@@ -36,8 +36,8 @@ std::unique_ptr<SceneModelSpec> read_snake_scene(const SceneReader& reader, cons
   check_model_keys(reader, model, path, "snake", {"nodes", "closed"});
   auto spec = std::make_unique<SceneSnake>();
   const std::string nodes_path = join_json_path(path, "nodes");
-  const JsonValue& nodes = reader.array(reader.require(model, path, "nodes", "an array of [x, y, z]"),
-                                        nodes_path, "[x, y, z] nodes");
+  const JsonValue& nodes = reader.array(
+      reader.require(model, path, "nodes", "an array of [x, y, z]"), nodes_path, "[x, y, z] nodes");
   for (size_t i = 0; i < nodes.size(); ++i) {
     spec->nodes.push_back(reader.point(nodes[i], json_index_path(nodes_path, i)));
   }

@@ -111,7 +111,8 @@ void read_material(const SceneReader& reader, const JsonValue& model, const std:
 }  // namespace
 
 SceneSuperquadric::SceneSuperquadric()
-    : shape((SuperquadricShapeParameters() << 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0).finished()) {
+    : shape(
+          (SuperquadricShapeParameters() << 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0).finished()) {
   settings.local_stiffness = {1.0, 1.0, 0.0};
 }
 
@@ -136,13 +137,12 @@ void SceneSuperquadric::write(JsonOut& model) const {
   model["quadrature_points"] = settings.quadrature_points;
   model["regularization"] = settings.regularization;
   const FeStiffnessCoefficients& local = settings.local_stiffness;
-  model["material"] = {
-      {"mass_density", settings.mass_density},
-      {"damping_alpha", settings.damping_alpha},
-      {"damping_beta", settings.damping_beta},
-      {"shape_stiffness", settings.shape_stiffness(0)},
-      {"local_stiffness",
-       json_array<3>(Eigen::Vector3d(local.membrane_u, local.membrane_v, local.spring))}};
+  model["material"] = {{"mass_density", settings.mass_density},
+                       {"damping_alpha", settings.damping_alpha},
+                       {"damping_beta", settings.damping_beta},
+                       {"shape_stiffness", settings.shape_stiffness(0)},
+                       {"local_stiffness", json_array<3>(Eigen::Vector3d(
+                                               local.membrane_u, local.membrane_v, local.spring))}};
 }
 
 std::unique_ptr<Model> SceneSuperquadric::build() const {

@@ -41,8 +41,8 @@ std::unique_ptr<SceneModelSpec> read_terzopoulos_surface_scene(const SceneReader
   const std::string material_path = join_json_path(path, "material");
   reader.number_key(material, material_path, "mass_density", spec->material.mass_density, 0.0,
                     true);
-  reader.number_key(material, material_path, "damping_density", spec->material.damping_density,
-                    0.0, false);
+  reader.number_key(material, material_path, "damping_density", spec->material.damping_density, 0.0,
+                    false);
   if (const JsonValue* eta = reader.find(material, "eta")) {
     spec->material.eta = reader.matrix2(*eta, join_json_path(material_path, "eta"));
   }

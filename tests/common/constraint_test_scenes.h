@@ -3,9 +3,9 @@
 
 #include <cmath>
 
+#include "dynamics/core/system.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/core/system.h"
 #include "nurbs/knot_vector.h"
 
 namespace dnurbs::testing {

@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/common/constraint_test_scenes.h"
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
 #include "constraints/surface_constraints.h"
 #include "core/error.h"
+#include "tests/common/constraint_test_scenes.h"
 
 namespace dnurbs {
 namespace {

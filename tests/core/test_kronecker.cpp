@@ -39,9 +39,9 @@ TEST(KroneckerIdentity, EqualsTheDenseKroneckerProduct) {
 TEST(FixedNodes, WholeNodesAreFoundAndPartialOnesRefused) {
   EXPECT_EQ(fixed_nodes({}, 3), std::vector<int>());
   EXPECT_EQ(fixed_nodes({3, 4, 5, 9, 10, 11}, 3), (std::vector<int>{1, 3}));
-  EXPECT_FALSE(fixed_nodes({3, 4}, 3).has_value());         // node 1 partly fixed
-  EXPECT_FALSE(fixed_nodes({4, 5, 6}, 3).has_value());      // straddles nodes 1 and 2
-  EXPECT_FALSE(fixed_nodes({0, 1, 2, 4}, 3).has_value());   // a stray coordinate
+  EXPECT_FALSE(fixed_nodes({3, 4}, 3).has_value());        // node 1 partly fixed
+  EXPECT_FALSE(fixed_nodes({4, 5, 6}, 3).has_value());     // straddles nodes 1 and 2
+  EXPECT_FALSE(fixed_nodes({0, 1, 2, 4}, 3).has_value());  // a stray coordinate
   EXPECT_EQ(fixed_nodes({0, 1, 2, 3}, 4), std::vector<int>{0});
   EXPECT_THROW(fixed_nodes({0}, 0), Error);
 }

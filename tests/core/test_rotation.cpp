@@ -38,9 +38,8 @@ TEST(Cayley, IsAUnitQuaternionOfSecondOrderAccuracy) {
   // cay(h w) and exp(h w) differ by O(h^3): the error ratio is 8 when h halves
   double previous = 0.0;
   for (const double h : {0.1, 0.05, 0.025}) {
-    const double error = (cayley(h * w).toRotationMatrix() -
-                          quaternion_exp(h * w).toRotationMatrix())
-                             .norm();
+    const double error =
+        (cayley(h * w).toRotationMatrix() - quaternion_exp(h * w).toRotationMatrix()).norm();
     EXPECT_NEAR(cayley(h * w).norm(), 1.0, 2e-16);
     if (previous > 0.0) {
       EXPECT_NEAR(previous / error, 8.0, 0.1) << h;

@@ -3,8 +3,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/core/system.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "nurbs/knot_vector.h"
 #include "nurbs/nurbs_surface.h"
 

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "design/point_set.h"
 #include "io/mesh_import.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -11,10 +11,10 @@
 
 #include "constraints/constraint_solver.h"
 #include "constraints/point_constraints.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/core/forces.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/integrators/integrator.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "hardcase_helpers.h"
 
 namespace dnurbs {

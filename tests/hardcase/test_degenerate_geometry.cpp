@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
+#include "dynamics/core/system.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/integrators/integrator.h"
-#include "dynamics/core/system.h"
 #include "hardcase_helpers.h"
-#include "core/error.h"
 #include "nurbs/knot_vector.h"
 
 namespace dnurbs {

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/integrators/integrator.h"
 #include "dynamics/core/system.h"
+#include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/grid/terzopoulos_surface.h"
+#include "dynamics/integrators/integrator.h"
 #include "hardcase_helpers.h"
 #include "surface/grid.h"
 

@@ -16,12 +16,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "io/csv_log.h"
 #include "io/scene.h"
 #include "io/scene_forces.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
-#include "core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -11,8 +11,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/mesh_import.h"
 #include "core/error.h"
+#include "io/mesh_import.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
 

@@ -10,8 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/mesh_export.h"
 #include "core/error.h"
+#include "io/mesh_export.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
 

@@ -180,8 +180,7 @@ TEST(SceneFile, ValuesAndReferencesAreParsedAsWritten) {
   EXPECT_EQ(as<SceneDNurbsCurve>(scene.models[0].spec).shape_file, "circle.json");
   EXPECT_TRUE(as<SceneDNurbsCurve>(scene.models[0].spec).settings.weight_mode == WeightMode::kFree);
   EXPECT_EQ(scene_model_type(scene.models[5]), "snake");
-  EXPECT_EQ(as<SceneDNurbsSurface>(scene.models[6].spec).fit->points,
-            "fit_surface_points.xyz");
+  EXPECT_EQ(as<SceneDNurbsSurface>(scene.models[6].spec).fit->points, "fit_surface_points.xyz");
   EXPECT_EQ(as<SceneDNurbsSurface>(scene.models[6].spec).surface->degree_u(), 2);
   // Names resolve to indices
   EXPECT_EQ(as<ScenePointForce>(scene.forces[0].spec).model, 1);
@@ -245,7 +244,7 @@ TEST(SceneSimulation, EveryModelForceAndConstraintTypeBuildsAndSteps) {
   // one tessellation path, dynamics/core/model_tessellation.h; the scene's own mesh used to
   // duplicate the poles and keep 12 zero-area triangles: 2 * 6 * 6)
   EXPECT_EQ(meshes[2].triangle_count(), 2 * 6 * 4 + 2 * 6);
-  EXPECT_EQ(meshes[3].vertex_count(), 4 * 5);        // terzopoulos: one vertex per node
+  EXPECT_EQ(meshes[3].vertex_count(), 4 * 5);  // terzopoulos: one vertex per node
   const SceneSample sample = simulation.sample();
   EXPECT_EQ(sample.probes.size(), 2u);
   EXPECT_EQ(sample.violations.size(), 8);
@@ -333,7 +332,6 @@ TEST(SceneFile, UnreadableFileIsNamed) {
 // ----------------------------------------------------------------------------------------------
 // The scene's "design" section (io/scene.h SceneDesign): parsed values, parse/write/parse
 // round trip, absent unless given, and every written key documented in docs/scene-format.md.
-
 
 constexpr const char* kModels = R"("models": [{"name": "rod", "type": "dnurbs_curve",
   "shape": {"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1],

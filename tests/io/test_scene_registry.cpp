@@ -42,7 +42,8 @@ class PointMass final : public Model {
   Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& /*u*/) const override {
     return q.head<3>();
   }
-  SparseMatrix position_jacobian(ConstVectorRef /*q*/, const Eigen::Vector2d& /*u*/) const override {
+  SparseMatrix position_jacobian(ConstVectorRef /*q*/,
+                                 const Eigen::Vector2d& /*u*/) const override {
     SparseMatrix identity(3, 3);
     identity.setIdentity();
     return identity;
@@ -168,8 +169,9 @@ TEST(SceneRegistry, BadRegistrationsAreRefused) {
                 register_scene_model_type({"Bad Name", &read_point_mass_scene, false, true, false});
               }),
               ::testing::HasSubstr("\"Bad Name\" is not"));
-  EXPECT_THAT(testing::error_message(
-                  [] { register_scene_model_type({"no_reader", nullptr, false, true, false}); }),
+  EXPECT_THAT(testing::error_message([] {
+                register_scene_model_type({"no_reader", nullptr, false, true, false});
+              }),
               ::testing::HasSubstr("has no reader"));
 }
 

@@ -8,8 +8,8 @@
 #include <Eigen/SparseCholesky>
 
 #include "core/error.h"
-#include "tests/common/superquadric_test_support.h"
 #include "surface/deformable_superquadric_shape.h"
+#include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {
 namespace {

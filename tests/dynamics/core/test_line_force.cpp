@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/grid/terzopoulos_surface.h"
 #include "core/error.h"
+#include "dynamics/grid/terzopoulos_surface.h"
 #include "surface/grid.h"
 
 namespace dnurbs {

@@ -8,10 +8,10 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "core/error.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
-#include "core/error.h"
+#include "dynamics/superquadric/deformable_superquadric_model.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/parametric_surface_tessellation.h"
 

@@ -8,12 +8,12 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/integrators/static_equilibrium.h"
-#include "dynamics/core/system.h"
-#include "tests/common/dynamics_test_helpers.h"
 #include "core/error.h"
+#include "dynamics/core/forces.h"
+#include "dynamics/core/system.h"
+#include "dynamics/integrators/static_equilibrium.h"
 #include "nurbs/knot_vector.h"
+#include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {
 namespace {
