@@ -12,33 +12,11 @@
 namespace dnurbs {
 namespace {
 
+// NLopt's name of a result code ("XTOL_REACHED"; nlopt_result_to_string, NLopt >= 2.7), or
+// "UNKNOWN" for a code it does not name.
 const char* result_name(nlopt::result result) {
-  switch (result) {
-    case nlopt::FAILURE:
-      return "FAILURE";
-    case nlopt::INVALID_ARGS:
-      return "INVALID_ARGS";
-    case nlopt::OUT_OF_MEMORY:
-      return "OUT_OF_MEMORY";
-    case nlopt::ROUNDOFF_LIMITED:
-      return "ROUNDOFF_LIMITED";
-    case nlopt::FORCED_STOP:
-      return "FORCED_STOP";
-    case nlopt::SUCCESS:
-      return "SUCCESS";
-    case nlopt::STOPVAL_REACHED:
-      return "STOPVAL_REACHED";
-    case nlopt::FTOL_REACHED:
-      return "FTOL_REACHED";
-    case nlopt::XTOL_REACHED:
-      return "XTOL_REACHED";
-    case nlopt::MAXEVAL_REACHED:
-      return "MAXEVAL_REACHED";
-    case nlopt::MAXTIME_REACHED:
-      return "MAXTIME_REACHED";
-    default:
-      return "UNKNOWN";
-  }
+  const char* name = nlopt_result_to_string(static_cast<nlopt_result>(result));
+  return name != nullptr ? name : "UNKNOWN";
 }
 
 // Velocity index -> stacked coordinate index of the same vector-space coordinate, or -1 where the

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <memory>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -51,6 +52,18 @@ void remove_temporaries(const TemporaryFileSystem& file_system) {
     std::filesystem::remove(temporary, ignored);
   }
 }
+
+// Each format with its file extension (lower case) and assimp's exporter id.
+struct MeshFormatName {
+  MeshFormat format;
+  std::string_view extension;
+  const char* assimp_id;
+};
+constexpr std::array<MeshFormatName, 5> kMeshFormatNames = {{{MeshFormat::kObj, ".obj", "obj"},
+                                                             {MeshFormat::kStl, ".stl", "stlb"},
+                                                             {MeshFormat::kPly, ".ply", "plyb"},
+                                                             {MeshFormat::kGltf, ".gltf", "gltf2"},
+                                                             {MeshFormat::kGlb, ".glb", "glb2"}}};
 
 // Diffuse colors given to the meshes in turn
 constexpr std::array<std::array<float, 3>, 6> kPalette = {{{0.80f, 0.52f, 0.25f},
@@ -170,37 +183,20 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".obj") {
-    return MeshFormat::kObj;
-  }
-  if (extension == ".stl") {
-    return MeshFormat::kStl;
-  }
-  if (extension == ".ply") {
-    return MeshFormat::kPly;
-  }
-  if (extension == ".gltf") {
-    return MeshFormat::kGltf;
-  }
-  if (extension == ".glb") {
-    return MeshFormat::kGlb;
+  for (const MeshFormatName& entry : kMeshFormatNames) {
+    if (extension == entry.extension) {
+      return entry.format;
+    }
   }
   throw make_error(path.string(), ": unknown mesh file extension \"", path.extension().string(),
                    "\" (expected .obj, .stl, .ply, .gltf or .glb)");
 }
 
 std::string assimp_format_id(MeshFormat format) {
-  switch (format) {
-    case MeshFormat::kObj:
-      return "obj";
-    case MeshFormat::kStl:
-      return "stlb";
-    case MeshFormat::kPly:
-      return "plyb";
-    case MeshFormat::kGltf:
-      return "gltf2";
-    case MeshFormat::kGlb:
-      return "glb2";
+  for (const MeshFormatName& entry : kMeshFormatNames) {
+    if (entry.format == format) {
+      return entry.assimp_id;
+    }
   }
   throw make_error("unknown mesh format ", static_cast<int>(format));
 }

@@ -32,25 +32,14 @@ inline constexpr int kSuperquadricShapeParameterCount =
 /// i.e. the superellipsoid's 6 followed by GlobalDeformationParameters' 8.
 using SuperquadricShapeParameters = Eigen::Matrix<double, kSuperquadricShapeParameterCount, 1>;
 
-/// Indices into SuperquadricShapeParameters.
-struct SuperquadricShapeParameter {
-  enum : int {
-    kScale = 0,
-    kAspect1 = 1,
-    kAspect2 = 2,
-    kAspect3 = 3,
-    kSquareness1 = 4,
-    kSquareness2 = 5,
-    kTaper1 = 6,
-    kTaper2 = 7,
-    kBendAmplitude = 8,
-    kBendOffset = 9,
-    kBendFrequency = 10,
-    kTwist = 11,
-    kShearX = 12,
-    kShearY = 13,
-  };
-};
+/// Indices into SuperquadricShapeParameters: the superellipsoid's names at their own positions
+/// (SuperquadricShapeParameter::kScale == SuperellipsoidParameter::kScale) and the global
+/// deformation's shifted past them (SuperquadricShapeParameter::kTwist ==
+/// kSuperellipsoidParameterCount + GlobalDeformationParameter::kTwist).
+struct SuperquadricShapeParameter
+    : SuperellipsoidParameterIndices<0>,
+      GlobalDeformationParameterIndices<kSuperellipsoidParameterCount> {};
+static_assert(SuperquadricShapeParameter::kShearY == kSuperquadricShapeParameterCount - 1);
 
 /// A point of the reference shape with its derivatives.
 struct SuperquadricShapeEvaluation {

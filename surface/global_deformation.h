@@ -25,19 +25,25 @@ inline constexpr int kGlobalDeformationParameterCount = 8;
 ///   sx, sy      shear of x and y by z (dimensionless)
 using GlobalDeformationParameters = Eigen::Matrix<double, kGlobalDeformationParameterCount, 1>;
 
-/// Indices into GlobalDeformationParameters.
-struct GlobalDeformationParameter {
+/// The positions of the global deformation parameters in a vector that holds them from index
+/// Offset on: GlobalDeformationParameter (Offset 0) for GlobalDeformationParameters, and entries
+/// 6..13 of the deformable superquadric's q_s (SuperquadricShapeParameter).
+template <int Offset>
+struct GlobalDeformationParameterIndices {
   enum : int {
-    kTaper1 = 0,
-    kTaper2 = 1,
-    kBendAmplitude = 2,
-    kBendOffset = 3,
-    kBendFrequency = 4,
-    kTwist = 5,
-    kShearX = 6,
-    kShearY = 7,
+    kTaper1 = Offset,
+    kTaper2,
+    kBendAmplitude,
+    kBendOffset,
+    kBendFrequency,
+    kTwist,
+    kShearX,
+    kShearY,
   };
 };
+
+/// Indices into GlobalDeformationParameters.
+using GlobalDeformationParameter = GlobalDeformationParameterIndices<0>;
 
 /// One deformation step p' = T(p; theta, h) with its k parameters theta.
 template <int ParameterCount>

@@ -7,6 +7,32 @@
 
 namespace dnurbs {
 
+namespace {
+
+// The four signed powers of e(u, v) (Terzopoulos 2003, eq. 1.30) with their derivatives:
+// C(u)^e1, S(u)^e1, C(v)^e2, S(v)^e2, from one cos and one sin per angle.
+struct SuperellipsoidPowers {
+  SignedPower cu;
+  SignedPower su;
+  SignedPower cv;
+  SignedPower sv;
+};
+
+SuperellipsoidPowers superellipsoid_powers(const SuperellipsoidParameters& parameters, double u,
+                                           double v) {
+  using P = SuperellipsoidParameter;
+  const double cos_u = std::cos(u);
+  const double sin_u = std::sin(u);
+  const double cos_v = std::cos(v);
+  const double sin_v = std::sin(v);
+  return {signed_power(cos_u, -sin_u, parameters[P::kSquareness1]),
+          signed_power(sin_u, cos_u, parameters[P::kSquareness1]),
+          signed_power(cos_v, -sin_v, parameters[P::kSquareness2]),
+          signed_power(sin_v, cos_v, parameters[P::kSquareness2])};
+}
+
+}  // namespace
+
 SuperellipsoidParameters sphere_superellipsoid_parameters(double radius) {
   SuperellipsoidParameters parameters;
   parameters << radius, 1.0, 1.0, 1.0, 1.0, 1.0;
@@ -29,16 +55,10 @@ Eigen::Vector3d superellipsoid_point(const SuperellipsoidParameters& parameters,
                                      double v) {
   using P = SuperellipsoidParameter;
   const double a = parameters[P::kScale];
-  const double cos_u = std::cos(u);
-  const double sin_u = std::sin(u);
-  const double cos_v = std::cos(v);
-  const double sin_v = std::sin(v);
-  const double cu = signed_power(cos_u, -sin_u, parameters[P::kSquareness1]).value;
-  const double su = signed_power(sin_u, cos_u, parameters[P::kSquareness1]).value;
-  const double cv = signed_power(cos_v, -sin_v, parameters[P::kSquareness2]).value;
-  const double sv = signed_power(sin_v, cos_v, parameters[P::kSquareness2]).value;
-  return {a * parameters[P::kAspect1] * cu * cv, a * parameters[P::kAspect2] * cu * sv,
-          a * parameters[P::kAspect3] * su};
+  const auto [cu, su, cv, sv] = superellipsoid_powers(parameters, u, v);
+  return {a * parameters[P::kAspect1] * cu.value * cv.value,
+          a * parameters[P::kAspect2] * cu.value * sv.value,
+          a * parameters[P::kAspect3] * su.value};
 }
 
 SuperellipsoidEvaluation evaluate_superellipsoid(const SuperellipsoidParameters& parameters,
@@ -48,15 +68,7 @@ SuperellipsoidEvaluation evaluate_superellipsoid(const SuperellipsoidParameters&
   const double a1 = parameters[P::kAspect1];
   const double a2 = parameters[P::kAspect2];
   const double a3 = parameters[P::kAspect3];
-  // cos and sin once per angle, shared by the two signed powers of that angle.
-  const double cos_u = std::cos(u);
-  const double sin_u = std::sin(u);
-  const double cos_v = std::cos(v);
-  const double sin_v = std::sin(v);
-  const SignedPower cu = signed_power(cos_u, -sin_u, parameters[P::kSquareness1]);
-  const SignedPower su = signed_power(sin_u, cos_u, parameters[P::kSquareness1]);
-  const SignedPower cv = signed_power(cos_v, -sin_v, parameters[P::kSquareness2]);
-  const SignedPower sv = signed_power(sin_v, cos_v, parameters[P::kSquareness2]);
+  const auto [cu, su, cv, sv] = superellipsoid_powers(parameters, u, v);
 
   SuperellipsoidEvaluation result;
   // The unscaled directions: e = a * diag(a1, a2, a3) * r with r = (Cu Cv, Cu Sv, Su).
@@ -93,14 +105,7 @@ Eigen::Matrix<double, 3, kSuperellipsoidParameterCount> superellipsoid_jacobian_
                                    parameters_dot[P::kAspect3]);
   const double e1_dot = parameters_dot[P::kSquareness1];
   const double e2_dot = parameters_dot[P::kSquareness2];
-  const double cos_u = std::cos(u);
-  const double sin_u = std::sin(u);
-  const double cos_v = std::cos(v);
-  const double sin_v = std::sin(v);
-  const SignedPower cu = signed_power(cos_u, -sin_u, parameters[P::kSquareness1]);
-  const SignedPower su = signed_power(sin_u, cos_u, parameters[P::kSquareness1]);
-  const SignedPower cv = signed_power(cos_v, -sin_v, parameters[P::kSquareness2]);
-  const SignedPower sv = signed_power(sin_v, cos_v, parameters[P::kSquareness2]);
+  const auto [cu, su, cv, sv] = superellipsoid_powers(parameters, u, v);
 
   // Rates of the signed powers (w fixed): Cu_dot = dCu/de1 e1_dot, and so on.
   const double cu_dot = cu.d_e * e1_dot;

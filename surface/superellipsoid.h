@@ -18,18 +18,16 @@ inline constexpr int kSuperellipsoidParameterCount = 6;
 ///   e1      squareness in latitude u (> 0), e2 squareness in longitude v (> 0)
 using SuperellipsoidParameters = Eigen::Matrix<double, kSuperellipsoidParameterCount, 1>;
 
-/// Indices into SuperellipsoidParameters (and the first six entries of the deformable
-/// superquadric's q_s).
-struct SuperellipsoidParameter {
-  enum : int {
-    kScale = 0,
-    kAspect1 = 1,
-    kAspect2 = 2,
-    kAspect3 = 3,
-    kSquareness1 = 4,
-    kSquareness2 = 5,
-  };
+/// The positions of the superellipsoid parameters in a vector that holds them from index
+/// Offset on: SuperellipsoidParameter (Offset 0) for SuperellipsoidParameters, and the first six
+/// entries of the deformable superquadric's q_s (SuperquadricShapeParameter).
+template <int Offset>
+struct SuperellipsoidParameterIndices {
+  enum : int { kScale = Offset, kAspect1, kAspect2, kAspect3, kSquareness1, kSquareness2 };
 };
+
+/// Indices into SuperellipsoidParameters.
+using SuperellipsoidParameter = SuperellipsoidParameterIndices<0>;
 
 /// The parameters of the sphere of the given radius: (r, 1, 1, 1, 1, 1).
 SuperellipsoidParameters sphere_superellipsoid_parameters(double radius);

@@ -36,6 +36,46 @@ void check_segments(const KnotVector& knots, int segments, const char* what) {
   }
 }
 
+// A mesh named `name` with room for vertex_count vertices, normals and texture coordinates.
+TriangleMesh sized_mesh(std::string name, int vertex_count) {
+  TriangleMesh mesh;
+  mesh.name = std::move(name);
+  mesh.vertices.resize(vertex_count, 3);
+  mesh.normals.resize(vertex_count, 3);
+  mesh.uv.resize(vertex_count, 2);
+  return mesh;
+}
+
+// Two triangles per cell of a grid of rows by columns samples, sample (i, j) at row
+// i * columns + j: the cells (i, j), i < cell_rows, j < cell_columns, with corners a = (i, j),
+// b = (i + 1, j), c = (i + 1, j + 1), d = (i, j + 1), split into (a, b, c) and (a, c, d), or
+// into (a, c, b) and (a, d, c) when `reversed`. The corner indices wrap (i + 1 = rows is row 0,
+// j + 1 = columns is column 0), so that a periodic direction's last cells close the mesh.
+// #cells * 2 by 3.
+Eigen::MatrixX3i grid_triangles(int rows, int columns, int cell_rows, int cell_columns,
+                                bool reversed) {
+  Eigen::MatrixX3i triangles(2 * cell_rows * cell_columns, 3);
+  int triangle = 0;
+  for (int i = 0; i < cell_rows; ++i) {
+    const int i1 = (i + 1) % rows;
+    for (int j = 0; j < cell_columns; ++j) {
+      const int j1 = (j + 1) % columns;
+      const int a = i * columns + j;
+      const int b = i1 * columns + j;
+      const int c = i1 * columns + j1;
+      const int d = i * columns + j1;
+      if (reversed) {
+        triangles.row(triangle++) << a, c, b;
+        triangles.row(triangle++) << a, d, c;
+      } else {
+        triangles.row(triangle++) << a, b, c;
+        triangles.row(triangle++) << a, c, d;
+      }
+    }
+  }
+  return triangles;
+}
+
 }  // namespace
 
 TriangleMesh tessellate_surface(const NurbsSurface& surface, int segments_u, int segments_v,
@@ -47,11 +87,7 @@ TriangleMesh tessellate_surface(const NurbsSurface& surface, int segments_u, int
   const int count_u = static_cast<int>(us.size());
   const int count_v = static_cast<int>(vs.size());
 
-  TriangleMesh mesh;
-  mesh.name = std::move(name);
-  mesh.vertices.resize(count_u * count_v, 3);
-  mesh.normals.resize(count_u * count_v, 3);
-  mesh.uv.resize(count_u * count_v, 2);
+  TriangleMesh mesh = sized_mesh(std::move(name), count_u * count_v);
   // Sample points, normals and parameters, u outer
   for (int i = 0; i < count_u; ++i) {
     for (int j = 0; j < count_v; ++j) {
@@ -66,20 +102,7 @@ TriangleMesh tessellate_surface(const NurbsSurface& surface, int segments_u, int
   // Two triangles per cell (a, b, c) and (a, c, d), with a = (i, j), b = (i + 1, j),
   // c = (i + 1, j + 1), d = (i, j + 1); (b - a) x (c - a) ~ Su x Sv du dv. Periodic directions
   // wrap their last cell to the first sample.
-  mesh.triangles.resize(2 * segments_u * segments_v, 3);
-  int triangle = 0;
-  for (int i = 0; i < segments_u; ++i) {
-    const int i1 = (i + 1) % count_u;
-    for (int j = 0; j < segments_v; ++j) {
-      const int j1 = (j + 1) % count_v;
-      const int a = i * count_v + j;
-      const int b = i1 * count_v + j;
-      const int c = i1 * count_v + j1;
-      const int d = i * count_v + j1;
-      mesh.triangles.row(triangle++) << a, b, c;
-      mesh.triangles.row(triangle++) << a, c, d;
-    }
-  }
+  mesh.triangles = grid_triangles(count_u, count_v, segments_u, segments_v, /*reversed=*/false);
   return mesh;
 }
 
@@ -144,11 +167,7 @@ TriangleMesh tessellate_curve_tube(const NurbsCurve& curve, int segments, double
     }
   }
 
-  TriangleMesh mesh;
-  mesh.name = std::move(name);
-  mesh.vertices.resize(rings * sides, 3);
-  mesh.normals.resize(rings * sides, 3);
-  mesh.uv.resize(rings * sides, 2);
+  TriangleMesh mesh = sized_mesh(std::move(name), rings * sides);
   const Eigen::MatrixX3d centres = sample_curve(curve, segments);
   for (int k = 0; k < rings; ++k) {
     const Eigen::Vector3d& t = tangents[static_cast<size_t>(k)];
@@ -166,20 +185,7 @@ TriangleMesh tessellate_curve_tube(const NurbsCurve& curve, int segments, double
   // Quads between consecutive rings, split as (a, c, b) and (a, d, c) so that the triangles face
   // outwards: along the ring the direction is d offset / d angle, and T x that is -offset.
   const int bands = closed ? rings : rings - 1;
-  mesh.triangles.resize(2 * bands * sides, 3);
-  int triangle = 0;
-  for (int k = 0; k < bands; ++k) {
-    const int k1 = (k + 1) % rings;
-    for (int s = 0; s < sides; ++s) {
-      const int s1 = (s + 1) % sides;
-      const int a = k * sides + s;
-      const int b = k1 * sides + s;
-      const int c = k1 * sides + s1;
-      const int d = k * sides + s1;
-      mesh.triangles.row(triangle++) << a, c, b;
-      mesh.triangles.row(triangle++) << a, d, c;
-    }
-  }
+  mesh.triangles = grid_triangles(rings, sides, bands, sides, /*reversed=*/true);
   return mesh;
 }
 

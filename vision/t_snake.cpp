@@ -27,9 +27,10 @@ TSnake::TSnake(const Image& image, ImageEdgePotential potential, const TSnakePar
       potential_(std::move(potential)),
       parameters_(parameters),
       grid_(grid_over_image(image, parameters)) {
-  if (image.width() != potential_.width() || image.height() != potential_.height()) {
+  const Image& samples = potential_.samples();
+  if (image.width() != samples.width() || image.height() != samples.height()) {
     throw make_error("T-snake image is ", image.width(), " by ", image.height(),
-                     ", its edge potential ", potential_.width(), " by ", potential_.height());
+                     ", its edge potential ", samples.width(), " by ", samples.height());
   }
   if (!image.values.allFinite()) {
     throw make_error("T-snake image has a pixel that is not finite");

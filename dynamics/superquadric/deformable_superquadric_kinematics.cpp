@@ -129,12 +129,13 @@ Eigen::Vector3d DeformableSuperquadricModel::centre_of_mass(ConstVectorRef q) co
   return state.centre + state.rotation * mass_properties(q).centre_of_mass;
 }
 
-Eigen::Vector3d DeformableSuperquadricModel::linear_momentum(ConstVectorRef q,
-                                                             ConstVectorRef qd) const {
-  const State state = decode(q);
-  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+template <typename Visitor>
+void DeformableSuperquadricModel::for_each_point_motion(const State& state, ConstVectorRef qd,
+                                                        Visitor&& visit) const {
   BodyJacobian lb(3, rigid_count_);
   for_each_point(state, !free_shape_.empty(), [&](const PointKinematics& pt) {
+    // Terzopoulos 2003, eq. 1.36: xdot = L qd = R (R^T L) qd, the body-frame part from the
+    // dense block [R^T, -[p]_x, J] and the local part from S q_d.
     body_jacobian(state.rotation, pt.p, pt.jacobian, settings_.parts.translation,
                   settings_.parts.rotation, free_shape_, lb);
     Eigen::Vector3d body = lb * qd.head(rigid_count_);
@@ -143,28 +144,27 @@ Eigen::Vector3d DeformableSuperquadricModel::linear_momentum(ConstVectorRef q,
         body += pt.fe->value[a] * qd.segment<3>(local_velocity_offset_ + node_offset(*pt.fe, a));
       }
     }
-    momentum += pt.mass * (state.rotation * body);
+    visit(pt.mass, state.centre + state.rotation * pt.p, state.rotation * body);
   });
+}
+
+Eigen::Vector3d DeformableSuperquadricModel::linear_momentum(ConstVectorRef q,
+                                                             ConstVectorRef qd) const {
+  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+  for_each_point_motion(
+      decode(q), qd, [&](double mass, const Eigen::Vector3d& /*x*/, const Eigen::Vector3d& x_dot) {
+        momentum += mass * x_dot;
+      });
   return momentum;
 }
 
 Eigen::Vector3d DeformableSuperquadricModel::angular_momentum(ConstVectorRef q,
                                                               ConstVectorRef qd) const {
-  const State state = decode(q);
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
-  BodyJacobian lb(3, rigid_count_);
-  for_each_point(state, !free_shape_.empty(), [&](const PointKinematics& pt) {
-    body_jacobian(state.rotation, pt.p, pt.jacobian, settings_.parts.translation,
-                  settings_.parts.rotation, free_shape_, lb);
-    Eigen::Vector3d body = lb * qd.head(rigid_count_);
-    if (pt.fe != nullptr) {
-      for (int a = 0; a < pt.fe->active_count; ++a) {
-        body += pt.fe->value[a] * qd.segment<3>(local_velocity_offset_ + node_offset(*pt.fe, a));
-      }
-    }
-    const Eigen::Vector3d x = state.centre + state.rotation * pt.p;
-    momentum += pt.mass * x.cross(state.rotation * body);
-  });
+  for_each_point_motion(decode(q), qd,
+                        [&](double mass, const Eigen::Vector3d& x, const Eigen::Vector3d& x_dot) {
+                          momentum += mass * x.cross(x_dot);
+                        });
   return momentum;
 }
 

@@ -184,6 +184,10 @@ class DeformableSuperquadricModel : public Model {
   State decode(ConstVectorRef q) const;
   template <typename Visitor>
   void for_each_point(const State& state, bool need_jacobian, Visitor&& visit) const;
+  /// Calls visit(mass, x, xdot) at every quadrature point with its world position x and world
+  /// velocity xdot = L qd (both 3-vectors): what the momenta integrate.
+  template <typename Visitor>
+  void for_each_point_motion(const State& state, ConstVectorRef qd, Visitor&& visit) const;
   /// The dense parts of M at a state: mass_rr (rigid_count_ square: c, w, free q_s) and the
   /// coupling of those velocities with q_d (rigid_count_ by 3 #nodes), without regularization.
   void assemble_dense_mass(const State& state, Eigen::MatrixXd& mass_rr,

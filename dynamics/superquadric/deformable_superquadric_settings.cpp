@@ -1,6 +1,7 @@
 #include "dynamics/superquadric/deformable_superquadric_settings.h"
 
 #include <cmath>
+#include <initializer_list>
 
 #include "core/error.h"
 
@@ -19,9 +20,12 @@ DeformableSuperquadricParts DeformableSuperquadricParts::rigid() {
 
 DeformableSuperquadricParts DeformableSuperquadricParts::global() {
   DeformableSuperquadricParts parts;
-  for (const int k : {Parameter::kAspect1, Parameter::kAspect2, Parameter::kAspect3, Parameter::kSquareness1,
-                      Parameter::kSquareness2, Parameter::kTaper1, Parameter::kTaper2, Parameter::kBendAmplitude,
-                      Parameter::kTwist, Parameter::kShearX, Parameter::kShearY}) {
+  // The superellipsoid's and the global deformation's indices are enumerators of two types:
+  // the list is typed explicitly.
+  for (const int k : std::initializer_list<int>{
+           Parameter::kAspect1, Parameter::kAspect2, Parameter::kAspect3, Parameter::kSquareness1,
+           Parameter::kSquareness2, Parameter::kTaper1, Parameter::kTaper2,
+           Parameter::kBendAmplitude, Parameter::kTwist, Parameter::kShearX, Parameter::kShearY}) {
     parts.shape[static_cast<size_t>(k)] = true;
   }
   return parts;
