@@ -35,7 +35,9 @@ ParameterDomain DNurbsCurve::parameter_domain(ConstVectorRef /*q*/) const {
   return domain;
 }
 
-std::optional<Shape> DNurbsCurve::exact_shape(ConstVectorRef q) const { return Shape(curve(q)); }
+std::optional<Shape> DNurbsCurve::exact_shape(ConstVectorRef q) const {
+  return Shape(curve(q));
+}
 
 int DNurbsCurve::freeze_outside(const SculptedRegion& region, int margin) {
   return freeze_outside_sculpted_region(*this, region, margin);

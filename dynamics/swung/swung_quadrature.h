@@ -12,8 +12,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/core/quadrature_assembly.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "nurbs/swung_jacobian.h"
 #include "nurbs/swung_surface.h"
 

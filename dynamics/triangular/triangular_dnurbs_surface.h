@@ -30,9 +30,9 @@
 #include <memory>
 #include <vector>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/core/model.h"
 #include "dynamics/core/quadrature_assembly.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/triangular/triangular_quadrature.h"
 #include "nurbs/jacobian.h"
 #include "nurbs/triangular_nurbs_surface.h"
