@@ -10,6 +10,11 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
 jobs="${JOBS:-$(nproc)}"
 cd "$root"
+if [ ! -f "$build/compile_commands.json" ]; then
+  echo "clang_tidy_check: $build/compile_commands.json is missing (configure with" \
+       "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON, as scripts/build.sh does)" >&2
+  exit 1
+fi
 folders=(core nurbs surface vision dynamics constraints design io tools)
 existing=()
 for folder in "${folders[@]}"; do
