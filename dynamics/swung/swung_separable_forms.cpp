@@ -89,6 +89,15 @@ void SwungSeparableForms::add_block(int row_kind, int column_kind, const Eigen::
   }
 }
 
+void SwungSeparableForms::add_profile_trajectory_coupling(const Eigen::MatrixXd& with_x,
+                                                          const Eigen::MatrixXd& with_y,
+                                                          Eigen::MatrixXd& matrix) const {
+  add_block(kProfileX, kTrajectoryX, with_x, matrix);
+  add_block(kTrajectoryX, kProfileX, with_x.transpose(), matrix);
+  add_block(kProfileX, kTrajectoryY, with_y, matrix);
+  add_block(kTrajectoryY, kProfileX, with_y.transpose(), matrix);
+}
+
 void SwungSeparableForms::add_vector(int kind, const Eigen::VectorXd& values,
                                      Eigen::Ref<Eigen::VectorXd>& vector) const {
   for (Eigen::Index i = 0; i < values.size(); ++i) {
@@ -124,10 +133,7 @@ void SwungSeparableForms::matrices(const Eigen::Ref<const Eigen::VectorXd>& q,
     add_block(kTrajectoryY, kTrajectoryY, c * f0 * b0, *matrix);
     const Eigen::MatrixXd scaled_x = c * cross_x;
     const Eigen::MatrixXd scaled_y = c * cross_y;
-    add_block(kProfileX, kTrajectoryX, scaled_x, *matrix);
-    add_block(kTrajectoryX, kProfileX, scaled_x.transpose(), *matrix);
-    add_block(kProfileX, kTrajectoryY, scaled_y, *matrix);
-    add_block(kTrajectoryY, kProfileX, scaled_y.transpose(), *matrix);
+    add_profile_trajectory_coupling(scaled_x, scaled_y, *matrix);
   }
   // Tangent stiffness d^2 E / dq^2 (Terzopoulos, eq. 1.20 integrated in closed form over the
   // product of the curves): the cross blocks carry factor 2, of which 1 is the Gauss-Newton part.
@@ -151,10 +157,7 @@ void SwungSeparableForms::matrices(const Eigen::Ref<const Eigen::VectorXd>& q,
     const Eigen::VectorXd akx = (cross_factor * k * a2) * (ak * s.profile_x);
     const Eigen::MatrixXd block_x = akx * (bl * s.trajectory_x).transpose();
     const Eigen::MatrixXd block_y = akx * (bl * s.trajectory_y).transpose();
-    add_block(kProfileX, kTrajectoryX, block_x, stiffness);
-    add_block(kTrajectoryX, kProfileX, block_x.transpose(), stiffness);
-    add_block(kProfileX, kTrajectoryY, block_y, stiffness);
-    add_block(kTrajectoryY, kProfileX, block_y.transpose(), stiffness);
+    add_profile_trajectory_coupling(block_x, block_y, stiffness);
   }
 }
 

@@ -66,6 +66,10 @@ class SwungSeparableForms {
   // Adds a block of coordinates (rows of kind r, columns of kind c; kinds 0 x, 1 z, 2 X, 3 Y).
   void add_block(int row_kind, int column_kind, const Eigen::MatrixXd& block,
                  Eigen::MatrixXd& matrix) const;
+  // Adds the symmetric coupling of the profile's x with the trajectory: `with_x` in the
+  // (profile x, trajectory X) block, `with_y` in (profile x, trajectory Y), and their transposes.
+  void add_profile_trajectory_coupling(const Eigen::MatrixXd& with_x, const Eigen::MatrixXd& with_y,
+                                       Eigen::MatrixXd& matrix) const;
   void add_vector(int kind, const Eigen::VectorXd& values,
                   Eigen::Ref<Eigen::VectorXd>& vector) const;
 
