@@ -70,8 +70,9 @@ void SceneSpringForce::write(JsonOut& json) const {
 }
 
 void SceneSpringForce::apply(System& system, double start, double end) const {
-  system.add_force(model,
-                   windowed(spring_force(at, vector_of_time(target), stiffness), start, end));
+  // Implicit: the spring's stiffness enters the integrators' step matrix (dynamics/core/spring.h)
+  system.add_spring(
+      model, windowed_spring(mouse_spring(at, vector_of_time(target), stiffness), start, end));
 }
 
 bool SceneSpringForce::add_to_region(int index, SculptedRegion& region) const {
@@ -120,8 +121,8 @@ void SceneControlPointForce::apply(System& system, double start, double end) con
       throw SceneKeyError(".control_points[" + std::to_string(k) + "]", error.what());
     }
   }
-  system.add_force(model,
-                   windowed(control_point_force(control_points, vector_of_time(force)), start, end));
+  system.add_force(
+      model, windowed(control_point_force(control_points, vector_of_time(force)), start, end));
 }
 
 bool SceneControlPointForce::add_to_region(int index, SculptedRegion& region) const {
@@ -208,9 +209,9 @@ std::unique_ptr<SceneForceSpec> read_pressure(const SceneReader& reader, const M
   reader.object(force, path, {"type", "model", "pressure", "start", "end"});
   auto spec = std::make_unique<ScenePressure>();
   spec->model = names.require(reader, force, path, "model");
-  spec->pressure = reader.scalar_schedule(
-      reader.require(force, path, "pressure", "a number or keyframes"),
-      join_json_path(path, "pressure"));
+  spec->pressure =
+      reader.scalar_schedule(reader.require(force, path, "pressure", "a number or keyframes"),
+                             join_json_path(path, "pressure"));
   return spec;
 }
 
