@@ -68,9 +68,9 @@ SceneModel read_model(const SceneReader& reader, const JsonValue& value, const s
     reader.fail(path, "expected a model object, got " + describe_json_value(value));
   }
   const std::vector<SceneModelType>& types = scene_model_types();
-  const SceneModelType& type = find_type(
-      types, reader.choice(reader.require(value, path, "type", "a model type"),
-                           join_json_path(path, "type"), type_names(types)));
+  const SceneModelType& type =
+      find_type(types, reader.choice(reader.require(value, path, "type", "a model type"),
+                                     join_json_path(path, "type"), type_names(types)));
   SceneModel model;
   model.name = "model" + std::to_string(index);
   if (const JsonValue* name = reader.find(value, "name")) {
@@ -96,9 +96,9 @@ SceneForce read_force(const SceneReader& reader, const ModelNames& names, const 
     reader.fail(path, "expected a force object, got " + describe_json_value(value));
   }
   const std::vector<SceneForceType>& types = scene_force_types();
-  const SceneForceType& type = find_type(
-      types, reader.choice(reader.require(value, path, "type", "a force type"),
-                           join_json_path(path, "type"), type_names(types)));
+  const SceneForceType& type =
+      find_type(types, reader.choice(reader.require(value, path, "type", "a force type"),
+                                     join_json_path(path, "type"), type_names(types)));
   SceneForce force;
   force.spec = type.read(reader, names, value, path);
   reader.number_key(value, path, "start", force.start);
@@ -119,9 +119,9 @@ SceneConstraint read_constraint(const SceneReader& reader, const ModelNames& nam
     reader.fail(path, "expected a constraint object, got " + describe_json_value(value));
   }
   const std::vector<SceneConstraintType>& types = scene_constraint_types();
-  const SceneConstraintType& type = find_type(
-      types, reader.choice(reader.require(value, path, "type", "a constraint type"),
-                           join_json_path(path, "type"), type_names(types)));
+  const SceneConstraintType& type =
+      find_type(types, reader.choice(reader.require(value, path, "type", "a constraint type"),
+                                     join_json_path(path, "type"), type_names(types)));
   SceneConstraint constraint;
   constraint.spec = type.read(reader, names, value, path);
   reader.number_key(value, path, "alpha", constraint.alpha, 0.0, false);
@@ -130,8 +130,8 @@ SceneConstraint read_constraint(const SceneReader& reader, const ModelNames& nam
 }
 
 void read_models(const SceneReader& reader, const JsonValue& root, Scene& scene) {
-  const JsonValue& models = reader.array(
-      reader.require(root, "", "models", "an array of models"), "models", "models");
+  const JsonValue& models =
+      reader.array(reader.require(root, "", "models", "an array of models"), "models", "models");
   if (models.empty()) {
     reader.fail("models", "expected at least one model, got an empty array");
   }
@@ -152,7 +152,7 @@ void read_integrator(const SceneReader& reader, const JsonValue& integrator,
   const std::string path = "integrator";
   reader.object(integrator, path,
                 {"scheme", "dt", "newton_iterations", "newton_tolerance", "newmark_beta",
-                 "newmark_gamma", "max_energy"});
+                 "newmark_gamma", "max_energy", "energy_growth"});
   if (const JsonValue* scheme = reader.find(integrator, "scheme")) {
     result.scheme =
         reader.choice(*scheme, "integrator.scheme", {"central", "implicit-euler", "newmark"});
@@ -163,6 +163,7 @@ void read_integrator(const SceneReader& reader, const JsonValue& integrator,
   reader.number_key(integrator, path, "newmark_beta", result.newmark_beta, 0.0, true);
   reader.number_key(integrator, path, "newmark_gamma", result.newmark_gamma, 0.0, true);
   reader.number_key(integrator, path, "max_energy", result.max_energy, 0.0, true);
+  reader.number_key(integrator, path, "energy_growth", result.energy_growth, 0.0, false);
 }
 
 void read_run(const SceneReader& reader, const JsonValue& root, Scene& scene) {
@@ -367,7 +368,8 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
                         {"newton_tolerance", s.newton_tolerance},
                         {"newmark_beta", s.newmark_beta},
                         {"newmark_gamma", s.newmark_gamma},
-                        {"max_energy", s.max_energy}};
+                        {"max_energy", s.max_energy},
+                        {"energy_growth", s.energy_growth}};
   if (scene.steps > 0) {
     root["run"] = {{"steps", scene.steps}};
   } else {
@@ -404,7 +406,9 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
 
 }  // namespace
 
-std::string scene_model_type(const SceneModel& model) { return model.spec->type(); }
+std::string scene_model_type(const SceneModel& model) {
+  return model.spec->type();
+}
 
 int Scene::step_count() const {
   if (steps > 0) {
@@ -414,9 +418,13 @@ int Scene::step_count() const {
   return static_cast<int>(std::ceil(duration / integrator.dt - 1e-9));
 }
 
-bool operator==(const SceneModel& a, const SceneModel& b) { return model_json(a) == model_json(b); }
+bool operator==(const SceneModel& a, const SceneModel& b) {
+  return model_json(a) == model_json(b);
+}
 
-bool operator==(const SceneForce& a, const SceneForce& b) { return force_json(a) == force_json(b); }
+bool operator==(const SceneForce& a, const SceneForce& b) {
+  return force_json(a) == force_json(b);
+}
 
 bool operator==(const SceneConstraint& a, const SceneConstraint& b) {
   return constraint_json(a) == constraint_json(b);
@@ -453,7 +461,9 @@ Scene read_scene_file(const std::filesystem::path& path) {
   return parse_scene_json(text.str(), path.string(), path.parent_path());
 }
 
-std::string scene_to_json(const Scene& scene) { return scene_json(scene, true).dump(2) + "\n"; }
+std::string scene_to_json(const Scene& scene) {
+  return scene_json(scene, true).dump(2) + "\n";
+}
 
 std::string scene_state_hash(const Scene& scene) {
   const std::string text = scene_json(scene, false).dump();
