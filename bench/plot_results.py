@@ -2,7 +2,8 @@
 """Plots and tables of the dnurbs benchmarks (bench/README.md).
 
 Reads the CSV files of `dnurbs-bench --out DIR` (work_precision.csv, richardson.csv, scaling.csv,
-scaling_fit.csv, machine.csv, needs.csv) and, if present in the same directory, evaluation.csv
+scaling_fit.csv, machine.csv, needs.csv) and, if present in the same directory, springs.csv
+(spring_step_bench), evaluation.csv
 (`evaluation_bench --out DIR`) and hardcase.xml (`test_hardcase --gtest_output=xml:DIR/hardcase.xml`).
 Writes log-log PNGs (work_precision_<family>.png, scaling.png) into --plots and the tables into
 --markdown.
@@ -122,6 +123,21 @@ def work_precision_summary(rows):
                   "error at finest dt", "s per simulated s", "observed order"], out)
 
 
+def springs_section(rows):
+    """The implicit-springs table of spring_step_bench (bench/springs/README.md)."""
+    text = ["\n## Implicit springs in the step\n",
+            "spring_step_bench: clamped bicubic sheet, four springs (k = 1e3), implicit Euler, "
+            "dt = 1/60. held: springs fixed; drag: spring 0's parameter and target move every "
+            "step (Woodbury, no refactorization); refactor: the same drag with the springs "
+            "summed into the step matrix and refactored every step. Ratios from one run.\n"]
+    text.append(table(["side", "coordinates", "backend", "no springs [s/step]", "held [s/step]",
+                       "held / no springs", "drag / held", "refactor / drag"],
+                      [[r["side"], r["coordinates"], r["backend"], fmt(r["none_s"]),
+                        fmt(r["held_s"]), fmt(r["held_over_none"]), fmt(r["drag_over_held"]),
+                        fmt(r["refactor_over_drag"])] for r in rows]))
+    return "\n".join(text)
+
+
 def hardcase_table(path):
     """Tests that recorded `measure` (RecordProperty: a <testcase> attribute in older GoogleTest,
     a <properties><property> child in newer), with value, bound and whether the test passed."""
@@ -203,6 +219,8 @@ def main():
                       fmt(r["chosen_seconds_per_step"]), fmt(r["saving_ratio"]),
                       r.get("error_against_naive", "-")]
                      for r in read_csv(data("needs.csv"))]))
+    if os.path.exists(data("springs.csv")):
+        md.append(springs_section(read_csv(data("springs.csv"))))
     if os.path.exists(data("evaluation.csv")):
         md.append("\n## Evaluation\n")
         columns = ["evaluator", "degree", "rational", "evaluations_per_second", "ratio_to_occt",

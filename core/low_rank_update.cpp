@@ -232,6 +232,19 @@ void LowRankUpdate::remove_term(int term) {
   t.place = Place::kUnused;
 }
 
+void LowRankUpdate::set_target(int term, std::span<const double> target) {
+  if (term < 0 || term >= static_cast<int>(terms_.size()) ||
+      terms_[static_cast<size_t>(term)].place == Place::kUnused) {
+    throw make_error("low-rank update: no term ", term);
+  }
+  for (size_t c = 0; c < target.size(); ++c) {
+    if (!std::isfinite(target[c])) {
+      throw make_error("low-rank term ", term, ": target entry ", c, " is ", target[c]);
+    }
+  }
+  terms_[static_cast<size_t>(term)].target.assign(target.begin(), target.end());
+}
+
 // B += sum over folded terms of k u t^T (their stiffness is in the factor, their pull is not).
 void LowRankUpdate::add_folded_targets(Eigen::Ref<Eigen::MatrixXd> b) const {
   for (const Term& term : terms_) {

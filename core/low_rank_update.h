@@ -79,6 +79,11 @@ class LowRankUpdate {
   void move_term(int term, std::span<const int> rows, std::span<const double> values,
                  double stiffness, std::span<const double> target = {});
   void remove_term(int term);
+  /// Replaces term `term`'s target only (empty: zero). Its u and k are unchanged, so its column
+  /// of W = A^{-1} U stays valid: an implicit spring whose pull changes every step at a fixed
+  /// parameter costs no extra solve column. Throws Error for an unknown term or a non-finite
+  /// entry.
+  void set_target(int term, std::span<const double> target);
 
   /// Solves in place: b n by k on input (B), X on output. Targets given must have k entries.
   void solve_in_place(Eigen::Ref<Eigen::MatrixXd> b);

@@ -152,7 +152,7 @@ void read_integrator(const SceneReader& reader, const JsonValue& integrator,
   const std::string path = "integrator";
   reader.object(integrator, path,
                 {"scheme", "dt", "newton_iterations", "newton_tolerance", "newmark_beta",
-                 "newmark_gamma", "max_energy"});
+                 "newmark_gamma", "max_energy", "energy_growth"});
   if (const JsonValue* scheme = reader.find(integrator, "scheme")) {
     result.scheme =
         reader.choice(*scheme, "integrator.scheme", {"central", "implicit-euler", "newmark"});
@@ -163,6 +163,7 @@ void read_integrator(const SceneReader& reader, const JsonValue& integrator,
   reader.number_key(integrator, path, "newmark_beta", result.newmark_beta, 0.0, true);
   reader.number_key(integrator, path, "newmark_gamma", result.newmark_gamma, 0.0, true);
   reader.number_key(integrator, path, "max_energy", result.max_energy, 0.0, true);
+  reader.number_key(integrator, path, "energy_growth", result.energy_growth, 0.0, false);
 }
 
 void read_run(const SceneReader& reader, const JsonValue& root, Scene& scene) {
@@ -367,7 +368,8 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
                         {"newton_tolerance", s.newton_tolerance},
                         {"newmark_beta", s.newmark_beta},
                         {"newmark_gamma", s.newmark_gamma},
-                        {"max_energy", s.max_energy}};
+                        {"max_energy", s.max_energy},
+                        {"energy_growth", s.energy_growth}};
   if (scene.steps > 0) {
     root["run"] = {{"steps", scene.steps}};
   } else {

@@ -68,8 +68,11 @@ struct SceneIntegrator {
   double newton_tolerance = 1e-12;
   double newmark_beta = 0.25;
   double newmark_gamma = 0.5;
-  /// The run stops as diverged when kinetic + potential energy exceeds this.
+  /// The run stops as diverged when its energy (kinetic + elastic + springs) exceeds this.
   double max_energy = 1e12;
+  /// ... or when it exceeds the energy budget (initial energy plus the forces' work) by more
+  /// than this times the energy the run has moved (dynamics/integrators/energy_budget.h).
+  double energy_growth = 1.0;
   bool operator==(const SceneIntegrator&) const = default;
 };
 

@@ -70,8 +70,9 @@ void SceneSpringForce::write(JsonOut& json) const {
 }
 
 void SceneSpringForce::apply(System& system, double start, double end) const {
-  system.add_force(model,
-                   windowed(spring_force(at, vector_of_time(target), stiffness), start, end));
+  // Implicit: the spring's stiffness enters the integrators' step matrix (dynamics/core/spring.h)
+  system.add_spring(
+      model, windowed_spring(mouse_spring(at, vector_of_time(target), stiffness), start, end));
 }
 
 bool SceneSpringForce::add_to_region(int index, SculptedRegion& region) const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -178,6 +179,8 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   settings.newton_tolerance = scene_.integrator.newton_tolerance;
   integrator_ = Integrator(settings);
   hash_ = scene_state_hash(scene_);
+  budget_ = EnergyBudget({scene_.integrator.energy_growth, scene_.integrator.max_energy});
+  budget_.start(system_);
 }
 
 void SceneSimulation::add_models() {
@@ -209,6 +212,8 @@ void SceneSimulation::add_forces() {
     const SceneForce& force = scene_.forces[i];
     try {
       force.spec->apply(system_, force.start, force.end);
+      force_sources_.resize(static_cast<size_t>(system_.force_count()), static_cast<int>(i));
+      spring_sources_.resize(static_cast<size_t>(system_.spring_id_count()), static_cast<int>(i));
     } catch (const SceneKeyError& error) {
       fail(scene_, indexed("forces", i) + error.key(), error.what());
     } catch (const Error& error) {
@@ -255,15 +260,52 @@ void SceneSimulation::step() {
     throw SimulationDiverged(
         make_error("step ", steps_ + 1, " (t = ", time + dt, ") diverged: ", error.what()).what());
   }
-  const double energy = system_.kinetic_energy() + system_.potential_energy();
-  if (!std::isfinite(energy) || energy > scene_.integrator.max_energy) {
+  const EnergyCheck check = budget_.after_step(
+      system_, solver_.constraint_count() > 0 ? solver_.constraint_force() : Eigen::VectorXd());
+  if (!check.passed) {
     restore_last();
-    throw SimulationDiverged(
-        make_error("step ", steps_ + 1, " (t = ", time + dt, ") diverged: the energy ", energy,
-                   " exceeds integrator.max_energy = ", scene_.integrator.max_energy)
-            .what());
+    std::ostringstream text;
+    text << "step " << steps_ + 1 << " (t = " << time + dt << ") diverged: the energy "
+         << check.energy;
+    if (check.not_finite) {
+      text << " is not finite";
+    } else if (check.above_ceiling) {
+      text << " exceeds integrator.max_energy = " << scene_.integrator.max_energy;
+    } else {
+      text << " exceeds its budget " << check.budget << " (initial energy "
+           << budget_.initial_energy() << " plus the work of the forces) by more than "
+           << "integrator.energy_growth = " << scene_.integrator.energy_growth
+           << " times the energy moved, " << check.scale;
+    }
+    text << "; driven by " << energy_driver(check) << ". The state is back at step " << steps_
+         << " (t = " << time << ", energy " << budget_.energy() << ", which passed the check)";
+    throw SimulationDiverged(text.str());
   }
   ++steps_;
+}
+
+std::string SceneSimulation::energy_driver(const EnergyCheck& check) const {
+  std::ostringstream text;
+  const auto scene_force = [&](int k) {
+    text << indexed("forces", static_cast<size_t>(k)) << " ("
+         << scene_.forces[static_cast<size_t>(k)].spec->type() << ", work " << check.driver_work
+         << " in the step of growth " << check.growth << ")";
+  };
+  switch (check.driver) {
+    case EnergyDriver::kForce:
+      scene_force(force_sources_.at(static_cast<size_t>(check.index)));
+      break;
+    case EnergyDriver::kSpring:
+      scene_force(spring_sources_.at(static_cast<size_t>(check.index)));
+      break;
+    case EnergyDriver::kExtra:
+      text << "the constraint forces (work " << check.driver_work << " in the step of growth "
+           << check.growth << ")";
+      break;
+    default:
+      text << divergence_setting(integrator_.settings(), system_, scene_.integrator.dt);
+  }
+  return text.str();
 }
 
 SceneSample SceneSimulation::sample() const {
@@ -331,6 +373,7 @@ std::vector<TriangleMesh> SceneSimulation::meshes(int resolution) const {
 
 void SceneSimulation::set_coordinates(const Eigen::VectorXd& q) {
   system_.set_state(q, Eigen::VectorXd::Zero(system_.velocity_count()), system_.time());
+  budget_.start(system_);
 }
 
 std::optional<Shape> SceneSimulation::shape(int i) const {
@@ -371,6 +414,7 @@ void SceneSimulation::restore(const Checkpoint& checkpoint, const std::string& s
     system_.set_accelerations(checkpoint.accelerations);
   }
   steps_ = checkpoint.step;
+  budget_.start(system_);
 }
 
 std::vector<SceneModelCost> SceneSimulation::cost() const {

@@ -14,6 +14,7 @@
 #include "constraints/constraint_solver.h"
 #include "core/error.h"
 #include "dynamics/core/system.h"
+#include "dynamics/integrators/energy_budget.h"
 #include "dynamics/integrators/integrator.h"
 #include "io/checkpoint.h"
 #include "io/scene.h"
@@ -21,8 +22,11 @@
 
 namespace dnurbs {
 
-/// Thrown by SceneSimulation::step when a step diverges (non-finite state or energy above
-/// integrator.max_energy); the simulation is back at the last good state.
+/// Thrown by SceneSimulation::step when a step diverges: the integrator rejects it (a non-finite
+/// state), or its energy fails the energy budget (dynamics/integrators/energy_budget.h: beyond
+/// the forces' work by more than integrator.energy_growth times the energy moved, or above
+/// integrator.max_energy). The message names what drove it (a force of the scene or an
+/// integrator setting); the simulation is back at the last state that passed the check.
 class SimulationDiverged : public Error {
  public:
   explicit SimulationDiverged(const std::string& message) : Error(message) {}
@@ -75,11 +79,13 @@ class SceneSimulation {
   const System& system() const { return system_; }
   const ConstraintSolver& constraints() const { return solver_; }
   const Integrator& integrator() const { return integrator_; }
+  /// The energy budget of the run (its last accepted state is the simulation's state).
+  const EnergyBudget& energy_budget() const { return budget_; }
   /// Steps done so far (restored by a checkpoint).
   int steps_done() const { return steps_; }
 
   /// Advances one integrator.dt. Throws SimulationDiverged (state back to the last good one)
-  /// if the integrator rejects the step or the energy is not finite or above max_energy.
+  /// if the integrator rejects the step or its energy fails the energy budget.
   void step();
 
   SceneSample sample() const;
@@ -109,6 +115,8 @@ class SceneSimulation {
   void add_models();
   void add_forces();
   void add_constraints();
+  // What drove a failed energy check, in the scene's words.
+  std::string energy_driver(const EnergyCheck& check) const;
 
   Scene scene_;
   System system_;
@@ -117,6 +125,9 @@ class SceneSimulation {
   std::string hash_;
   int steps_ = 0;
   std::vector<double> tube_radii_;  ///< curves and snakes: tube radius of their meshes
+  EnergyBudget budget_;
+  std::vector<int> force_sources_;   ///< scene force of each System force
+  std::vector<int> spring_sources_;  ///< scene force of each System spring id
 };
 
 }  // namespace dnurbs

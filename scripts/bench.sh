@@ -31,7 +31,7 @@ fi
 cmake -S "${root}" -B "${build}" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 jobs="$(nproc)"
 cmake --build "${build}" --target dnurbs_bench -j"${jobs}"
-for optional in evaluation_bench closest_point_bench test_hardcase; do
+for optional in spring_step_bench evaluation_bench closest_point_bench test_hardcase; do
   cmake --build "${build}" --target "${optional}" -j"${jobs}" >/dev/null 2>&1 ||
     echo "bench.sh: target ${optional} not built (absent or failing); its table is skipped"
 done
@@ -42,6 +42,14 @@ start=$(date +%s)
 status=0
 "${build}/bench/dnurbs-bench" --out "${data}" "${quick[@]}" ||
   { status=$?; echo "bench.sh: dnurbs-bench exceeded a bound (see BOUND EXCEEDED above)"; }
+springs="$(find "${build}/bench" -maxdepth 3 -type f -name spring_step_bench -perm -u+x | head -n 1)"
+if [ -n "${springs}" ]; then
+  if [ "${#quick[@]}" -gt 0 ]; then
+    "${springs}" --out "${data}" --quick || { status=$?; echo "bench.sh: spring_step_bench failed"; }
+  else
+    "${springs}" --out "${data}" || { status=$?; echo "bench.sh: spring_step_bench failed"; }
+  fi
+fi
 evaluation="$(find "${build}/bench" -maxdepth 3 -type f -name evaluation_bench -perm -u+x | head -n 1)"
 if [ -n "${evaluation}" ]; then
   "${evaluation}" --out "${data}" || { status=$?; echo "bench.sh: evaluation_bench failed"; }

@@ -2,7 +2,9 @@
 // Applied forces for System::add_force. Every generalized force goes through L^T (Terzopoulos 2003,
 // below eq 1.26: f_q = integral J^T f(u, t) du): a point force f at u gives L(u)^T f, a force
 // density gives integral L^T f. Forces that depend on the state are explicit in the integrators
-// (their derivatives are not in the effective matrix).
+// (their derivatives are not in the effective matrix); springs added with System::add_spring
+// (dynamics/core/spring.h) are the implicit alternative to spring_force. VectorOfTime and
+// ScalarOfTime are declared in dynamics/core/spring.h.
 
 #include <functional>
 #include <vector>
@@ -14,17 +16,15 @@
 
 namespace dnurbs {
 
-/// A 3-vector function of time.
-using VectorOfTime = std::function<Eigen::Vector3d(double)>;
-/// A scalar function of time.
-using ScalarOfTime = std::function<double(double)>;
-
 /// The force f(t) acting at the material point u: L(u)^T f(t).
 Force point_force(const Eigen::Vector2d& u, VectorOfTime force);
 Force point_force(const Eigen::Vector2d& u, const Eigen::Vector3d& force);
 
-/// A "mouse spring" of stiffness k from the material point u to a target that moves in time:
-/// L(u)^T k (target(t) - x(u)). Throws Error if k is negative or not finite.
+/// An explicit spring of stiffness k from the material point u to a target that moves in time:
+/// L(u)^T k (target(t) - x(u)), evaluated at the state like any force, its stiffness not in the
+/// step matrix (stable only for k small against the mass at the integrator's dt). Prefer
+/// System::add_spring(model, mouse_spring(...)), which is implicit. Throws Error if k is negative
+/// or not finite.
 Force spring_force(const Eigen::Vector2d& u, VectorOfTime target, double stiffness);
 
 /// The force f(t) added directly to the position coordinates of each listed control point

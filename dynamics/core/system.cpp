@@ -1,6 +1,7 @@
 #include "dynamics/core/system.h"
 
 #include <cmath>
+#include <utility>
 
 #include "core/error.h"
 
@@ -52,6 +53,7 @@ System::System(const System& other)
     : coordinate_offsets_(other.coordinate_offsets_),
       velocity_offsets_(other.velocity_offsets_),
       forces_(other.forces_),
+      springs_(other.springs_),
       fixed_(other.fixed_),
       coordinates_(other.coordinates_),
       velocities_(other.velocities_),
@@ -254,15 +256,107 @@ int System::add_force(int i, Force force) {
   return static_cast<int>(forces_.size()) - 1;
 }
 
-void System::add_applied_forces(double time, ConstVectorRef q, ConstVectorRef qd,
-                                VectorRef force) const {
-  for (const auto& [i, applied] : forces_) {
-    const Model& m = *models_[static_cast<size_t>(i)];
-    const int cq = coordinate_offsets_[static_cast<size_t>(i)];
-    const int cv = velocity_offsets_[static_cast<size_t>(i)];
-    applied(m, time, q.segment(cq, m.coordinate_count()), qd.segment(cv, m.velocity_count()),
-            force.segment(cv, m.velocity_count()));
+void System::add_applied_force(int index, double time, ConstVectorRef q, ConstVectorRef qd,
+                               VectorRef force) const {
+  if (index < 0 || index >= force_count()) {
+    throw make_error("force index ", index, " is outside 0..", force_count() - 1);
   }
+  const auto& [i, applied] = forces_[static_cast<size_t>(index)];
+  const Model& m = *models_[static_cast<size_t>(i)];
+  const int cq = coordinate_offsets_[static_cast<size_t>(i)];
+  const int cv = velocity_offsets_[static_cast<size_t>(i)];
+  applied(m, time, q.segment(cq, m.coordinate_count()), qd.segment(cv, m.velocity_count()),
+          force.segment(cv, m.velocity_count()));
+}
+
+void System::add_applied_forces(double time, ConstVectorRef q, ConstVectorRef qd, VectorRef force,
+                                bool include_springs) const {
+  for (int index = 0; index < force_count(); ++index) {
+    add_applied_force(index, time, q, qd, force);
+  }
+  if (include_springs) {
+    add_spring_forces(time, q, force);
+  }
+}
+
+int System::add_spring(int i, Spring spring) {
+  check_index(i);
+  if (!spring) {
+    throw make_error("empty spring added to model ", i);
+  }
+  springs_.emplace_back(i, std::move(spring));
+  return static_cast<int>(springs_.size()) - 1;
+}
+
+bool System::has_spring(int id) const {
+  return id >= 0 && id < spring_id_count() && springs_[static_cast<size_t>(id)].first >= 0;
+}
+
+int System::spring_model(int id) const {
+  if (!has_spring(id)) {
+    throw make_error("there is no spring ", id, " (", spring_id_count(), " ids so far)");
+  }
+  return springs_[static_cast<size_t>(id)].first;
+}
+
+void System::set_spring(int id, Spring spring) {
+  spring_model(id);  // checks the id
+  if (!spring) {
+    throw make_error("empty spring given to spring ", id);
+  }
+  springs_[static_cast<size_t>(id)].second = std::move(spring);
+}
+
+void System::remove_spring(int id) {
+  spring_model(id);  // checks the id
+  springs_[static_cast<size_t>(id)] = {-1, Spring()};
+}
+
+SpringState System::spring_state(int id, double time) const {
+  spring_model(id);  // checks the id
+  SpringState state = springs_[static_cast<size_t>(id)].second(time);
+  check_spring_state(state, id, time);
+  return state;
+}
+
+// f = L(u)^T k (target - x(u)) (Terzopoulos 2003, below eq. 1.26), model by model.
+void System::add_spring_forces(double time, ConstVectorRef q, VectorRef force) const {
+  for (int id = 0; id < spring_id_count(); ++id) {
+    if (!has_spring(id)) {
+      continue;
+    }
+    const SpringState state = spring_state(id, time);
+    if (state.stiffness != 0.0) {
+      add_spring_force(springs_[static_cast<size_t>(id)].first, state, q, force);
+    }
+  }
+}
+
+void System::add_spring_force(int i, const SpringState& state, ConstVectorRef q,
+                              VectorRef force) const {
+  const Model& m = model(i);
+  const auto q_model = q.segment(coordinate_offsets_[static_cast<size_t>(i)], m.coordinate_count());
+  const Eigen::Vector3d pull =
+      state.stiffness * (state.target - m.position(q_model, state.parameter));
+  m.add_point_force(q_model, state.parameter, pull,
+                    force.segment(velocity_offsets_[static_cast<size_t>(i)], m.velocity_count()));
+}
+
+double System::spring_energy(double time, ConstVectorRef q) const {
+  double energy = 0.0;
+  for (int id = 0; id < spring_id_count(); ++id) {
+    if (!has_spring(id)) {
+      continue;
+    }
+    const SpringState state = spring_state(id, time);
+    const int i = springs_[static_cast<size_t>(id)].first;
+    const Model& m = *models_[static_cast<size_t>(i)];
+    const auto q_model =
+        q.segment(coordinate_offsets_[static_cast<size_t>(i)], m.coordinate_count());
+    energy +=
+        0.5 * state.stiffness * (m.position(q_model, state.parameter) - state.target).squaredNorm();
+  }
+  return energy;
 }
 
 void System::add_internal_forces(ConstVectorRef q, VectorRef force) const {

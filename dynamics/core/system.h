@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "dynamics/core/model.h"
+#include "dynamics/core/spring.h"
 
 namespace dnurbs {
 
@@ -73,8 +74,43 @@ class System {
   int add_force(int i, Force force);
   void clear_forces() { forces_.clear(); }
   bool has_forces() const { return !forces_.empty(); }
-  /// Adds every applied force at (t, q, qd) (stacked vectors) into `force`.
-  void add_applied_forces(double time, ConstVectorRef q, ConstVectorRef qd, VectorRef force) const;
+  /// Number of applied forces (indices of add_force).
+  int force_count() const { return static_cast<int>(forces_.size()); }
+  /// Adds applied force `index` alone at (t, q, qd) (stacked vectors) into `force`.
+  void add_applied_force(int index, double time, ConstVectorRef q, ConstVectorRef qd,
+                         VectorRef force) const;
+  /// Adds every applied force at (t, q, qd) (stacked vectors) into `force`: the Force
+  /// functions and, when `include_springs`, the springs' forces evaluated explicitly at q
+  /// (add_spring_forces). The integrators leave the springs out and treat them implicitly.
+  void add_applied_forces(double time, ConstVectorRef q, ConstVectorRef qd, VectorRef force,
+                          bool include_springs = true) const;
+
+  // Springs (dynamics/core/spring.h): implicit in the integrators ----------------------------
+  /// Attaches `spring` to model i; returns its id (ids of removed springs are not reused).
+  /// Throws Error for an index out of range or an empty function.
+  int add_spring(int i, Spring spring);
+  /// Replaces spring `id`'s function (an interactive drag may instead give a function of time).
+  void set_spring(int id, Spring spring);
+  /// Detaches spring `id`. Throws Error naming the id if there is no such spring.
+  void remove_spring(int id);
+  /// One past the largest spring id so far (removed ids included).
+  int spring_id_count() const { return static_cast<int>(springs_.size()); }
+  /// True if spring `id` exists (was added and not removed).
+  bool has_spring(int id) const;
+  /// The model of spring `id`; throws Error if there is none.
+  int spring_model(int id) const;
+  /// Spring `id`'s state at `time`, checked (check_spring_state); throws Error if none.
+  SpringState spring_state(int id, double time) const;
+  /// Adds every spring's generalized force L(u)^T k (target - x(u)) at time t and stacked q.
+  void add_spring_forces(double time, ConstVectorRef q, VectorRef force) const;
+  /// Adds L(u)^T k (target - x(u)) of one spring state on model i at stacked q into the stacked
+  /// `force` (any real k: a negative one subtracts the force of stiffness -k).
+  void add_spring_force(int i, const SpringState& state, ConstVectorRef q, VectorRef force) const;
+  /// Sum of (1/2) k |x(u) - target|^2 over the springs at time t and stacked q.
+  double spring_energy(double time, ConstVectorRef q) const;
+  /// spring_energy at the current time and state.
+  double spring_energy() const { return spring_energy(time_, coordinates_); }
+
   /// Adds every model's internal force f_int(q) into `force`.
   void add_internal_forces(ConstVectorRef q, VectorRef force) const;
   /// Adds every model's generalized inertial force g(q, qd) into `force`.
@@ -115,6 +151,7 @@ class System {
   std::vector<int> coordinate_offsets_;
   std::vector<int> velocity_offsets_;
   std::vector<std::pair<int, Force>> forces_;
+  std::vector<std::pair<int, Spring>> springs_;  // (model, spring); model -1: removed
   std::vector<int> fixed_;
   Eigen::VectorXd coordinates_;
   Eigen::VectorXd velocities_;

@@ -2,13 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
-
-#include <Eigen/SparseCholesky>
 
 #include "core/error.h"
-#include "core/fixed_coordinates.h"
-#include "core/kronecker.h"
+#include "dynamics/integrators/step_blocks.h"
 
 namespace dnurbs {
 
@@ -18,27 +14,11 @@ using RowMatrixX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using NodeMap = Eigen::Map<RowMatrixX3>;
 using ConstNodeMap = Eigen::Map<const RowMatrixX3>;
 
-// M + c_D D + c_K K (an empty D and zero coefficients are skipped, so that c_D = c_K = 0
-// factors M with its own pattern).
-SparseMatrix effective_matrix(const ModelMatrices& matrices, double damping_coefficient,
-                              double stiffness_coefficient) {
-  SparseMatrix result = matrices.mass;
-  if (stiffness_coefficient != 0.0) {
-    result += stiffness_coefficient * matrices.stiffness;
-  }
-  if (damping_coefficient != 0.0 && matrices.damping.nonZeros() > 0) {
-    result += damping_coefficient * matrices.damping;
-  }
+// The blocks' factorization: the integrator's Cholesky backend under the spring terms.
+LowRankSettings low_rank_settings(const IntegratorSettings& settings) {
+  LowRankSettings result;
+  result.cholesky = settings.cholesky;
   return result;
-}
-
-bool same_pattern(const SparseMatrix& a, const SparseMatrix& b) {
-  if (a.rows() != b.rows() || a.nonZeros() != b.nonZeros() || !a.isCompressed() ||
-      !b.isCompressed()) {
-    return false;
-  }
-  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
 }
 
 int first_non_finite(const Eigen::VectorXd& x) {
@@ -49,146 +29,6 @@ int first_non_finite(const Eigen::VectorXd& x) {
   }
   return -1;
 }
-
-// One diagonal block of A: the velocities of one model (the System's matrices are block
-// diagonal by model, so A^{-1} r is the per-block solves stacked). Fixed coordinates are
-// eliminated inside the block; a constant model with the S (x) I_3 structure whose fixed
-// coordinates come in node triples is factored as its scalar matrix with x, y, z as three
-// right-hand sides (the Kronecker layout: unknowns are nodes, right-hand sides node-by-3).
-struct MatrixBlock {
-  int model = 0;
-  int coordinate_offset = 0;
-  int coordinate_count = 0;
-  int velocity_offset = 0;
-  int velocity_count = 0;
-  bool constant = false;
-  bool kronecker = false;
-  // The coefficients the factorization was built for (constant blocks reuse it).
-  bool factored = false;
-  double position_coefficient = 0.0;
-  double velocity_coefficient = 0.0;
-  int factorizations = 0;
-  // The free unknowns of the block (nodes in the Kronecker layout, velocities otherwise).
-  FreeCoordinates free;
-  Eigen::SimplicialLDLT<SparseMatrix> solver;
-  SparseMatrix analyzed_pattern;  // reduced block whose pattern the solver has analyzed
-  ModelMatrices matrices;         // state-dependent blocks: M, D, K at the current iterate
-  Eigen::MatrixXd rhs_free, x_free;
-
-  MatrixBlock(const System& system, int index) : model(index) {
-    const Model& m = system.model(index);
-    coordinate_offset = system.coordinate_offset(index);
-    coordinate_count = m.coordinate_count();
-    velocity_offset = system.velocity_offset(index);
-    velocity_count = m.velocity_count();
-    constant = m.matrices_are_constant() && m.constant_matrices() != nullptr;
-    const std::vector<int>& fixed = m.fixed_coordinates();
-    const std::optional<std::vector<int>> nodes = fixed_nodes(fixed, 3);
-    kronecker = constant && m.kronecker_block_size() == 3 && m.scalar_matrices() != nullptr &&
-                velocity_count % 3 == 0 && coordinate_count == velocity_count && nodes;
-    free = kronecker ? FreeCoordinates(velocity_count / 3, *nodes)
-                     : FreeCoordinates(velocity_count, fixed);
-  }
-
-  // The model's full (velocity-space) matrices: the constant ones, or those last assembled.
-  const ModelMatrices& full_matrices(const System& system) const {
-    return constant ? *system.model(model).constant_matrices() : matrices;
-  }
-
-  // Factors M + c_D D + c_K K of the block (the scalar matrices in the Kronecker layout, which
-  // constant blocks take from the model; state-dependent blocks from `matrices`). A block whose
-  // factorization throws stays unfactored.
-  void factor(const System& system, double damping_coefficient, double stiffness_coefficient) {
-    const ModelMatrices& source =
-        kronecker ? *system.model(model).scalar_matrices() : full_matrices(system);
-    factored = false;
-    ++factorizations;
-    if (free.free_count() > 0) {
-      factor_free(source, damping_coefficient, stiffness_coefficient);
-    }
-    position_coefficient = stiffness_coefficient;
-    velocity_coefficient = damping_coefficient;
-    factored = true;
-  }
-
-  // SimplicialLDLT of the free rows and columns (the pattern analyzed only when it changes).
-  void factor_free(const ModelMatrices& source, double damping_coefficient,
-                   double stiffness_coefficient) {
-    const SparseMatrix reduced =
-        free.reduce(effective_matrix(source, damping_coefficient, stiffness_coefficient));
-    if (!same_pattern(reduced, analyzed_pattern)) {
-      solver.analyzePattern(reduced);
-      analyzed_pattern = reduced;
-    }
-    solver.factorize(reduced);
-    if (solver.info() != Eigen::Success) {
-      throw make_error("the effective matrix A = M + c D + c' K of model ", model, " (",
-                       reduced.rows(),
-                       " free unknowns) could not be factored: is some free coordinate without "
-                       "mass?");
-    }
-  }
-
-  // x = A_ff^{-1} r on the block's free unknowns, zero on its fixed ones (block segments of the
-  // stacked vectors).
-  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-    const auto free_count = static_cast<Eigen::Index>(free.free_count());
-    if (free_count == 0) {
-      return;
-    }
-    if (kronecker) {
-      const ConstNodeMap R(r.data() + velocity_offset, velocity_count / 3, 3);
-      NodeMap X(x.data() + velocity_offset, velocity_count / 3, 3);
-      rhs_free.resize(free_count, 3);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        rhs_free.row(i) = R.row(free.free_unknown(static_cast<int>(i)));
-      }
-      x_free = solver.solve(rhs_free);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        X.row(free.free_unknown(static_cast<int>(i))) = x_free.row(i);
-      }
-    } else {
-      rhs_free.resize(free_count, 1);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        rhs_free(i, 0) = r[velocity_offset + free.free_unknown(static_cast<int>(i))];
-      }
-      x_free = solver.solve(rhs_free);
-      for (Eigen::Index i = 0; i < free_count; ++i) {
-        x[velocity_offset + free.free_unknown(static_cast<int>(i))] = x_free(i, 0);
-      }
-    }
-  }
-};
-
-// The blocks of one System layout (rebuilt when the System's revision or size changes).
-struct MatrixBlocks {
-  bool laid_out = false;
-  std::uint64_t revision = 0;
-  int velocity_count = 0;
-  std::vector<std::unique_ptr<MatrixBlock>> blocks;
-
-  void layout(const System& system) {
-    if (laid_out && revision == system.revision() && velocity_count == system.velocity_count() &&
-        static_cast<int>(blocks.size()) == system.model_count()) {
-      return;
-    }
-    blocks.clear();
-    for (int i = 0; i < system.model_count(); ++i) {
-      blocks.push_back(std::make_unique<MatrixBlock>(system, i));
-    }
-    laid_out = true;
-    revision = system.revision();
-    velocity_count = system.velocity_count();
-  }
-
-  // x = A^{-1} r block by block (zero on fixed coordinates).
-  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-    x.setZero(r.size());
-    for (const auto& block : blocks) {
-      block->solve(r, x);
-    }
-  }
-};
 
 }  // namespace
 
@@ -255,7 +95,7 @@ StepCoefficients step_coefficients(const IntegratorSettings& settings, double t,
 }  // namespace
 
 struct Integrator::Workspace {
-  MatrixBlocks blocks;
+  StepBlocks blocks;
   StepCoefficients coefficients;
   Eigen::VectorXd q_pred, v_pred, v_store, a, delta, rhs, q_iter, v_iter, external, increment;
   Eigen::VectorXd q_new, v_new;
@@ -353,7 +193,7 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 Integrator::~Integrator() = default;
 
 int Integrator::block_factorization_count(int model) const {
-  const MatrixBlocks& blocks = work_->blocks;
+  const StepBlocks& blocks = work_->blocks;
   if (model < 0 || model >= static_cast<int>(blocks.blocks.size())) {
     throw make_error("model index ", model, " is outside the ", blocks.blocks.size(),
                      " blocks of the last stepped system");
@@ -373,8 +213,8 @@ void Integrator::initial_acceleration(System& system) {
   system.add_applied_forces(system.time(), q, v, rhs);
   system.add_inertial_forces(q, v, rhs);
   system.add_internal_forces(q, rhs);
-  MatrixBlocks mass_blocks;
-  mass_blocks.layout(system);
+  StepBlocks mass_blocks;
+  mass_blocks.layout(system, low_rank_settings(settings_));
   for (const auto& block : mass_blocks.blocks) {
     if (!block->constant) {
       system.model(block->model)
@@ -386,7 +226,7 @@ void Integrator::initial_acceleration(System& system) {
       rhs.segment(block->velocity_offset, block->velocity_count).noalias() -=
           damping * v.segment(block->velocity_offset, block->velocity_count);
     }
-    block->factor(system, 0.0, 0.0);
+    block->factor(system, 0.0, 0.0, /*fold_springs=*/false);
   }
   ++factorization_serial_;
   Eigen::VectorXd a;
@@ -432,10 +272,12 @@ void Integrator::step(System& system, double dt) {
   predict(system, scheme == IntegratorScheme::kNewmark, dt, w);
   const bool any_state_dependent = factor_constant_blocks(system);
 
-  // Forces that the central scheme evaluates once at (t, q, v)
+  // Forces that the central scheme evaluates once at (t, q, v); implicit springs are evaluated
+  // at the iterate (update_springs)
   if (scheme == IntegratorScheme::kCentral) {
     w.external.setZero(n);
-    system.add_applied_forces(t, system.coordinates(), w.v_pred, w.external);
+    system.add_applied_forces(t, system.coordinates(), w.v_pred, w.external,
+                              settings_.springs == SpringTreatment::kExplicit);
     system.add_inertial_forces(system.coordinates(), w.v_pred, w.external);
   }
 
@@ -491,7 +333,7 @@ bool Integrator::factor_constant_blocks(const System& system) {
   // Constant blocks of A: factored once per dt and scheme
   Workspace& w = *work_;
   const StepCoefficients& c = w.coefficients;
-  w.blocks.layout(system);
+  w.blocks.layout(system, low_rank_settings(settings_));
   bool refactored = false;
   bool any_state_dependent = false;
   for (const auto& block : w.blocks.blocks) {
@@ -499,7 +341,8 @@ bool Integrator::factor_constant_blocks(const System& system) {
       any_state_dependent = true;
     } else if (!block->factored || block->position_coefficient != c.position ||
                block->velocity_coefficient != c.velocity) {
-      block->factor(system, c.velocity, c.position);
+      block->factor(system, c.velocity, c.position,
+                    settings_.springs == SpringTreatment::kRefactor);
       ++factorization_count_;
       refactored = true;
     }
@@ -519,19 +362,26 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
     system.advance_coordinates(w.q_pred, w.increment, w.q_iter);
   }
   w.v_iter = w.v_pred + c.velocity * w.a;
-  // State-dependent blocks: iterates stay admissible (free weights above their minimum), then
-  // the block is re-assembled and re-factored at the iterate.
+  // State-dependent blocks: iterates stay admissible (free weights above their minimum); the
+  // springs' terms follow the iterate; then those blocks are re-assembled and re-factored at it.
+  for (const auto& block : w.blocks.blocks) {
+    if (!block->constant) {
+      system.model(block->model)
+          .project_state(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
+                         w.v_iter.segment(block->velocity_offset, block->velocity_count));
+    }
+  }
+  update_springs(system);
+  const bool fold_springs = settings_.springs == SpringTreatment::kRefactor;
   bool assembled = false;
   for (const auto& block : w.blocks.blocks) {
     if (block->constant) {
       continue;
     }
-    const Model& model = system.model(block->model);
-    auto q_block = w.q_iter.segment(block->coordinate_offset, block->coordinate_count);
-    auto v_block = w.v_iter.segment(block->velocity_offset, block->velocity_count);
-    model.project_state(q_block, v_block);
-    model.assemble_matrices(q_block, block->matrices);
-    block->factor(system, c.velocity, c.position);
+    system.model(block->model)
+        .assemble_matrices(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
+                           block->matrices);
+    block->factor(system, c.velocity, c.position, fold_springs);
     ++factorization_count_;
     assembled = true;
   }
@@ -539,13 +389,18 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
     ++factorization_serial_;
   }
   // b = f + g + f_int(q) - D v - M a at the iterate, block by block (a = 0 before the first
-  // solve without a warm start).
+  // solve without a warm start). The springs' pull k L^T (target - x) is in b where the spring
+  // terms carry no target (a solve hook, kRefactor) or the springs are explicit.
+  const bool explicit_springs = settings_.springs == SpringTreatment::kExplicit;
   if (settings_.scheme == IntegratorScheme::kCentral) {
     w.rhs = w.external;
   } else {
     w.rhs.setZero(system.velocity_count());
-    system.add_applied_forces(c.force_time, w.q_iter, w.v_iter, w.rhs);
+    system.add_applied_forces(c.force_time, w.q_iter, w.v_iter, w.rhs, explicit_springs);
     system.add_inertial_forces(w.q_iter, w.v_iter, w.rhs);
+  }
+  if (!explicit_springs && (hook_ || fold_springs)) {
+    system.add_spring_forces(c.force_time, w.q_iter, w.rhs);
   }
   subtract_block_terms(system, with_acceleration, w);
   if (hook_) {
@@ -572,6 +427,35 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
     w.blocks.solve(w.rhs, w.delta);
   }
   w.a += w.delta;
+}
+
+bool Integrator::update_springs(const System& system) {
+  if (settings_.springs == SpringTreatment::kExplicit) {
+    return false;
+  }
+  Workspace& w = *work_;
+  const StepCoefficients& c = w.coefficients;
+  const bool refactor = settings_.springs == SpringTreatment::kRefactor;
+  // Target form unless a hook needs A^{-1} as a linear map (implicit_springs.h)
+  const bool target_form = !refactor && !hook_;
+  bool changed = false;
+  for (const auto& block : w.blocks.blocks) {
+    if (block->free.free_count() == 0) {
+      continue;  // nothing to solve: the springs pull on fixed coordinates only
+    }
+    const bool block_changed =
+        block->springs.update(system, block->spring_layout(), c.force_time, w.q_iter, c.position,
+                              target_form, refactor ? nullptr : &block->solver);
+    if (block_changed && refactor && block->constant) {
+      block->factor(system, c.velocity, c.position, /*fold_springs=*/true);
+      ++factorization_count_;
+    }
+    changed = changed || block_changed;
+  }
+  if (changed) {
+    ++factorization_serial_;
+  }
+  return changed;
 }
 
 }  // namespace dnurbs

@@ -16,8 +16,13 @@
 //                   a_old, coefficients beta dt^2 and gamma dt (beta = 1/4, gamma = 1/2:
 //                   average acceleration), forces at t + dt.
 //
+// Springs (System::add_spring) are implicit: their stiffness c_K k L^T L is part of A, as low-rank
+// terms on the factor, and their pull k L^T (target - x) part of b, evaluated at the iterate with
+// the target at the force time (implicit_springs.h); IntegratorSettings::springs chooses how.
+//
 // A is block diagonal by model (the System stacks the models' M, D, K), so it is factored and
-// solved block by block, one block per model, each with SimplicialLDLT:
+// solved block by block, one block per model (step_blocks.h), each with SparseCholesky
+// (IntegratorSettings::cholesky; SimplicialLDLT by default):
 //   constant blocks (fixed-weight D-NURBS, grid surfaces, snakes) are factored once per
 //   (dt, scheme) and every later solve only back-substitutes; a constant model with the
 //   S (x) I_3 structure is factored as its scalar matrix with x, y, z as three right-hand sides;
@@ -42,7 +47,9 @@
 
 #include <Eigen/Core>
 
+#include "core/sparse_cholesky.h"
 #include "dynamics/core/system.h"
+#include "dynamics/integrators/implicit_springs.h"
 
 namespace dnurbs {
 
@@ -61,6 +68,12 @@ struct IntegratorSettings {
   int newton_iterations = 0;
   /// Iterations stop when |delta a| <= newton_tolerance * max(|a|, 1e-300).
   double newton_tolerance = 1e-12;
+  /// How springs enter the step (implicit_springs.h): low-rank terms on the factor by default.
+  SpringTreatment springs = SpringTreatment::kLowRank;
+  /// The factorization of each block. SimplicialLDLT by default (the results of every scene
+  /// stay those recorded with it); kAutomatic takes CHOLMOD's supernodal factorization from
+  /// kDefaultSupernodalThreshold free unknowns on, which is faster there.
+  SparseCholeskySettings cholesky{CholeskyBackend::kSimplicialLdlt, kDefaultSupernodalThreshold};
 };
 
 /// The linear system of one step, handed to a solve hook (a constraint layer adds its rows
@@ -75,11 +88,13 @@ struct StepSystem {
   double state_time = 0.0;                                 ///< time of the iterate's state (t + dt)
   const Eigen::VectorXd* acceleration = nullptr;           ///< acceleration a of the iterate so far
   /// Changes whenever `solve` uses a new factorization (of A or, for the initial acceleration,
-  /// of M), so that a hook may keep work done with the previous one.
+  /// of M) or a spring term of A was added, moved or removed, so that a hook may keep work done
+  /// with the previous one.
   std::uint64_t factorization_serial = 0;
   const std::vector<int>* fixed_coordinates = nullptr;
   const Eigen::VectorXd* rhs = nullptr;  ///< b (the residual at the current iterate)
-  /// x = A^{-1} r on the free coordinates (x zero on fixed ones); reuses the factorization.
+  /// x = A^{-1} r on the free coordinates (x zero on fixed ones); reuses the factorization. A
+  /// includes the springs' stiffness and `rhs` their pull (linear in r: no spring target in it).
   std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& x)> solve;
 };
 
@@ -128,6 +143,9 @@ class Integrator {
   // One solve of A delta = b at the current iterate (re-factoring state-dependent blocks), then
   // a += delta; `with_acceleration`: b subtracts M a (after the first solve or a warm start).
   void solve_iteration(const System& system, double dt, bool with_acceleration);
+  // Brings every block's spring terms to the iterate; refactors constant blocks whose folded
+  // springs changed (kRefactor). Returns true if A changed.
+  bool update_springs(const System& system);
 
   IntegratorSettings settings_;
   SolveHook hook_;

@@ -1,12 +1,45 @@
 #include "dynamics/integrators/static_equilibrium.h"
 
 #include <cmath>
+#include <vector>
 
 #include <Eigen/SparseCholesky>
 
 #include "core/error.h"
 
 namespace dnurbs {
+
+namespace {
+
+// Sum over the springs at the system's time of k L^T L (velocity space, stacked), with k L^T
+// target added to `rhs`.
+SparseMatrix spring_stiffness(const System& system, Eigen::VectorXd& rhs) {
+  const int n = system.velocity_count();
+  SparseMatrix result(n, n);
+  for (int id = 0; id < system.spring_id_count(); ++id) {
+    if (!system.has_spring(id)) {
+      continue;
+    }
+    const SpringState state = system.spring_state(id, system.time());
+    const int i = system.spring_model(id);
+    const SparseMatrix local =
+        system.model(i).position_jacobian(system.coordinates(i), state.parameter);
+    SparseMatrix jacobian(3, n);  // L in the stacked velocity space
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (Eigen::Index j = 0; j < local.outerSize(); ++j) {
+      for (SparseMatrix::InnerIterator it(local, j); it; ++it) {
+        triplets.emplace_back(static_cast<int>(it.row()),
+                              system.velocity_offset(i) + static_cast<int>(j), it.value());
+      }
+    }
+    jacobian.setFromTriplets(triplets.begin(), triplets.end());
+    result += state.stiffness * SparseMatrix(jacobian.transpose() * jacobian);
+    rhs += state.stiffness * (jacobian.transpose() * state.target);
+  }
+  return result;
+}
+
+}  // namespace
 
 void solve_static_equilibrium(System& system) {
   if (!system.matrices_are_constant()) {
@@ -18,9 +51,13 @@ void solve_static_equilibrium(System& system) {
     throw make_error("static equilibrium needs coordinates and velocities of the same size (",
                      system.coordinate_count(), " and ", n, ")");
   }
-  const SparseMatrix& K = system.constant_matrices()->stiffness;
   const Eigen::VectorXd& q = system.coordinates();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  // K plus the springs' k L^T L, f plus their k L^T target: a spring's force k L^T (target - L q)
+  // is linear in q (L constant for constant-matrix models).
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  system.add_applied_forces(system.time(), q, zero, rhs, /*include_springs=*/false);
+  const SparseMatrix K = spring_stiffness(system, rhs) + system.constant_matrices()->stiffness;
 
   // Right-hand side f - K q_c: the fixed coordinates at their values, the free ones at zero.
   std::vector<int> free_index(static_cast<size_t>(n), 0);
@@ -37,8 +74,6 @@ void solve_static_equilibrium(System& system) {
       held[i] = q[i];
     }
   }
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  system.add_applied_forces(system.time(), q, zero, rhs);
   rhs.noalias() -= K * held;
 
   // K_ff by selection of the free rows and columns.
