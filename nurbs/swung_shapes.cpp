@@ -66,8 +66,8 @@ SwungSurface swung_torus(double major_radius, double minor_radius) {
 
 SwungSurface swung_open_profile(double x0, double z0, double x1, double z1,
                                 int profile_control_points) {
-  for (const auto& [value, name] : {std::pair{x0, "x0"}, std::pair{z0, "z0"}, std::pair{x1, "x1"},
-                                    std::pair{z1, "z1"}}) {
+  for (const auto& [value, name] :
+       {std::pair{x0, "x0"}, std::pair{z0, "z0"}, std::pair{x1, "x1"}, std::pair{z1, "z1"}}) {
     if (!std::isfinite(value)) {
       throw make_error("swung open profile ", name, " is ", value, ", must be finite");
     }

@@ -96,7 +96,8 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
       // re-factors its small dense matrix where its tensor-product twin back-substitutes)
       const double saving = c.naive_solve_work / c.solve_work;
       out << ", one solve "
-          << (saving >= 1.0 ? ratio(saving) + "x cheaper" : ratio(1.0 / saving) + "x more expensive")
+          << (saving >= 1.0 ? ratio(saving) + "x cheaper"
+                            : ratio(1.0 / saving) + "x more expensive")
           << " (estimated)\n";
     }
   }

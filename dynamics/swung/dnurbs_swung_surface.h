@@ -19,8 +19,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/core/model.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/swung/swung_quadrature.h"
 #include "dynamics/swung/swung_separable_forms.h"
 #include "nurbs/swung_jacobian.h"

@@ -17,11 +17,9 @@ namespace dnurbs {
 
 void DNurbsSwungSurface::fix_coordinates(const std::vector<int>& coordinates) {
   if (gauge_coordinate_ >= 0) {
-    gauge_requested_ =
-        gauge_requested_ || std::find(coordinates.begin(), coordinates.end(), gauge_coordinate_) !=
-                                coordinates.end();
-    if (fixes_swung_scaling_gauge(layout_, initial_coordinates_, gauge_coordinate_,
-                                  coordinates)) {
+    gauge_requested_ = gauge_requested_ || std::find(coordinates.begin(), coordinates.end(),
+                                                     gauge_coordinate_) != coordinates.end();
+    if (fixes_swung_scaling_gauge(layout_, initial_coordinates_, gauge_coordinate_, coordinates)) {
       release_gauge();
     }
   }
@@ -46,14 +44,17 @@ void DNurbsSwungSurface::release_gauge() {
   *this = std::move(released);
 }
 
-void DNurbsSwungSurface::fix_point(int i) { fix_coordinates(swung_point_coordinates(layout_, i)); }
+void DNurbsSwungSurface::fix_point(int i) {
+  fix_coordinates(swung_point_coordinates(layout_, i));
+}
 
 void DNurbsSwungSurface::fix_border() {
   const std::vector<int> border =
       swung_border_coordinates(surface_, layout_, swung_parameter_domain(surface_));
   if (border.empty()) {
-    throw make_error("this swung surface is closed (periodic or seamed directions, poles on the "
-                     "axis): it has no border to fix");
+    throw make_error(
+        "this swung surface is closed (periodic or seamed directions, poles on the "
+        "axis): it has no border to fix");
   }
   fix_coordinates(border);
 }

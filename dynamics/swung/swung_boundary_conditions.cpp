@@ -50,16 +50,18 @@ std::vector<int> swung_border_coordinates(const SwungSurface& surface, const Swu
   const int trajectory = layout.trajectory_offset(0);
   std::vector<int> coordinates;
   // Edges u = const: the profile's end control points and the whole trajectory.
-  for (const auto& [is_border, u] : {std::pair{!domain.periodic_u && !domain.pole_u_min, domain.u_min},
-                                     std::pair{!domain.periodic_u && !domain.pole_u_max, domain.u_max}}) {
+  for (const auto& [is_border, u] :
+       {std::pair{!domain.periodic_u && !domain.pole_u_min, domain.u_min},
+        std::pair{!domain.periodic_u && !domain.pole_u_max, domain.u_max}}) {
     if (is_border) {
       add_active_at(surface.profile().knots(), u, 0, per, coordinates);
       add_curve(trajectory, layout.trajectory_count, per, coordinates);
     }
   }
   // Edges v = const: the whole profile and the trajectory's end control points.
-  for (const auto& [is_border, v] : {std::pair{!domain.periodic_v && !domain.pole_v_min, domain.v_min},
-                                     std::pair{!domain.periodic_v && !domain.pole_v_max, domain.v_max}}) {
+  for (const auto& [is_border, v] :
+       {std::pair{!domain.periodic_v && !domain.pole_v_min, domain.v_min},
+        std::pair{!domain.periodic_v && !domain.pole_v_max, domain.v_max}}) {
     if (is_border) {
       add_curve(0, layout.profile_count, per, coordinates);
       add_active_at(surface.trajectory().knots(), v, trajectory, per, coordinates);

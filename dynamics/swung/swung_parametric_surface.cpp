@@ -36,11 +36,11 @@ ParameterDomain swung_parameter_domain(const SwungSurface& surface) {
 
 NormalOrientation swung_normal_orientation(const SwungSurface& surface) {
   // The trajectory's swept area integral (t x t') dv, and the profile integrals of I_r and I_z.
-  const double swept = integrate_over_curve(
-      surface.trajectory(), [](const CurveDerivatives& t) { return t(0, 0) * t(1, 1) - t(0, 1) * t(1, 0); });
-  const double radial = -integrate_over_curve(surface.profile(), [](const CurveDerivatives& p) {
-    return p(0, 0) * p(0, 0) * p(1, 2);
+  const double swept = integrate_over_curve(surface.trajectory(), [](const CurveDerivatives& t) {
+    return t(0, 0) * t(1, 1) - t(0, 1) * t(1, 0);
   });
+  const double radial = -integrate_over_curve(
+      surface.profile(), [](const CurveDerivatives& p) { return p(0, 0) * p(0, 0) * p(1, 2); });
   const double vertical = integrate_over_curve(
       surface.profile(), [](const CurveDerivatives& p) { return p(0, 0) * p(1, 0); });
   // Relative to the profile's extent: a flat profile's p_z' is exactly 0, a curved one's is not.
@@ -67,7 +67,9 @@ ParametricSurface swung_parametric_surface(const SwungSurface& surface,
   const double sign = orientation == NormalOrientation::kSuCrossSv ? 1.0 : -1.0;
   return ParametricSurface(
       domain, [surface](double u, double v) { return surface.point(u, v); },
-      [surface, sign](double u, double v) { return Eigen::Vector3d(sign * surface.unit_normal(u, v)); },
+      [surface, sign](double u, double v) {
+        return Eigen::Vector3d(sign * surface.unit_normal(u, v));
+      },
       orientation);
 }
 

@@ -115,8 +115,8 @@ SceneSwungPrototype read_prototype(const SceneReader& reader, const JsonValue& v
   }
   reader.integer_key(value, path, "profile_control_points", prototype.profile_control_points, 2,
                      10000);
-  for (const auto& [key, target] : {std::pair{"start", &prototype.start},
-                                    std::pair{"end", &prototype.end}}) {
+  for (const auto& [key, target] :
+       {std::pair{"start", &prototype.start}, std::pair{"end", &prototype.end}}) {
     if (const JsonValue* point = reader.find(value, key)) {
       *target = reader.vector<2>(*point, join_json_path(path, key), "[x, z]");
     }
@@ -128,20 +128,21 @@ SceneSwungPrototype read_prototype(const SceneReader& reader, const JsonValue& v
 NurbsCurve read_curve(const SceneReader& reader, const JsonValue& model, const std::string& path,
                       const char* name, std::string& shape_file) {
   const std::string curve_path = join_json_path(path, name);
-  const JsonValue& curve = reader.require(
-      model, path, name, "{\"shape\": <nurbs_curve>} or {\"shape_file\": \"...\"}");
+  const JsonValue& curve =
+      reader.require(model, path, name, "{\"shape\": <nurbs_curve>} or {\"shape_file\": \"...\"}");
   reader.object(curve, curve_path, {"shape", "shape_file"});
   if ((reader.find(curve, "shape") == nullptr) == (reader.find(curve, "shape_file") == nullptr)) {
-    reader.fail(curve_path, "expected exactly one of \"shape\" (a nurbs_curve in the shape format "
-                            "of dnurbs eval) and \"shape_file\"");
+    reader.fail(curve_path,
+                "expected exactly one of \"shape\" (a nurbs_curve in the shape format "
+                "of dnurbs eval) and \"shape_file\"");
   }
   return read_scene_shape<NurbsCurve>(reader, curve, curve_path, shape_file, "nurbs_curve");
 }
 
 // "profile", "trajectory" and "alpha": the swung surface of two curves; a curve out of its
 // plane or a bad alpha fails naming its key.
-SwungSurface read_curves(const SceneReader& reader, const JsonValue& model,
-                         const std::string& path, SceneSwungSurface& spec) {
+SwungSurface read_curves(const SceneReader& reader, const JsonValue& model, const std::string& path,
+                         SceneSwungSurface& spec) {
   NurbsCurve profile = read_curve(reader, model, path, "profile", spec.profile_file);
   NurbsCurve trajectory = read_curve(reader, model, path, "trajectory", spec.trajectory_file);
   double alpha = 1.0;
@@ -277,14 +278,12 @@ std::unique_ptr<SceneModelSpec> read_swung_surface_scene(const SceneReader& read
                                                          const std::string& path) {
   check_model_keys(reader, model, path, "swung_surface",
                    {"prototype", "profile", "trajectory", "alpha", "refine", "fix_profile",
-                    "fix_trajectory", "fix_poles", "weights", "quadrature_points",
-                    "minimum_weight", "geometric_stiffness", "separable_assembly",
-                    "weight_inertia"});
+                    "fix_trajectory", "fix_poles", "weights", "quadrature_points", "minimum_weight",
+                    "geometric_stiffness", "separable_assembly", "weight_inertia"});
   auto spec = std::make_unique<SceneSwungSurface>();
   // Material -----------------------------------------------------------------------------------
-  const JsonValue material =
-      model_material(reader, model, path,
-                     {"mass_density", "damping_density", "a10", "a01", "b20", "b11", "b02"});
+  const JsonValue material = model_material(
+      reader, model, path, {"mass_density", "damping_density", "a10", "a01", "b20", "b11", "b02"});
   const std::string material_path = join_json_path(path, "material");
   for (const MaterialKey& key : kMaterialKeys) {
     double value = (spec->material.*key.value)(Eigen::Vector2d::Zero());
@@ -322,15 +321,15 @@ std::unique_ptr<SceneModelSpec> read_swung_surface_scene(const SceneReader& read
   // Refinement and curve fixes -----------------------------------------------------------------
   if (const JsonValue* refine = reader.find(model, "refine")) {
     const std::string refine_path = join_json_path(path, "refine");
-    const JsonValue& counts = reader.array(*refine, refine_path, "[profile, trajectory] knot counts");
+    const JsonValue& counts =
+        reader.array(*refine, refine_path, "[profile, trajectory] knot counts");
     if (counts.size() != 2) {
       reader.fail(refine_path, "expected [profile, trajectory] knots per span, got " +
                                    describe_json_value(*refine));
     }
     for (int k = 0; k < 2; ++k) {
-      spec->refine[k] =
-          reader.integer(counts[static_cast<size_t>(k)],
-                         json_index_path(refine_path, static_cast<size_t>(k)), 0, 64);
+      spec->refine[k] = reader.integer(counts[static_cast<size_t>(k)],
+                                       json_index_path(refine_path, static_cast<size_t>(k)), 0, 64);
     }
   }
   reader.boolean_key(model, path, "fix_profile", spec->fix_profile);

@@ -32,8 +32,8 @@ struct SceneSwungPrototype {
   double brim_radius = 1.5;
   double crown_radius = 0.8;
   int profile_control_points = 4;
-  Eigen::Vector2d start = Eigen::Vector2d::Zero();     ///< open_profile: [x, z] of u = 0
-  Eigen::Vector2d end = Eigen::Vector2d(1.0, 0.0);     ///< open_profile: [x, z] of u = 1
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();  ///< open_profile: [x, z] of u = 0
+  Eigen::Vector2d end = Eigen::Vector2d(1.0, 0.0);  ///< open_profile: [x, z] of u = 1
 
   /// The prototype's swung surface (nurbs/swung_shapes.h); throws Error from the generator.
   SwungSurface surface() const;
@@ -48,9 +48,9 @@ struct SceneSwungSurface final : SceneModelSpec {
   /// Knots inserted inside every non-empty span of the profile and of the trajectory
   /// (refine_swung_surface).
   Eigen::Vector2i refine = Eigen::Vector2i::Zero();
-  bool fix_profile = false;     ///< DNurbsSwungSurface::fix_profile
-  bool fix_trajectory = false;  ///< DNurbsSwungSurface::fix_trajectory
-  bool fix_poles = true;        ///< DNurbsSwungSurface::fix_poles
+  bool fix_profile = false;        ///< DNurbsSwungSurface::fix_profile
+  bool fix_trajectory = false;     ///< DNurbsSwungSurface::fix_trajectory
+  bool fix_poles = true;           ///< DNurbsSwungSurface::fix_poles
   DNurbsSurfaceMaterial material;  ///< constants (scene files give numbers)
   DNurbsSwungSettings settings;
 

@@ -31,8 +31,8 @@ TEST(SwungRefinement, SurfaceIsUnchangedAndGainsControlPointsPerSpan) {
     double worst = 0.0;
     for (int i = 0; i <= 30; ++i) {
       for (int j = 0; j <= 30; ++j) {
-        worst = std::max(worst,
-                         (refined.point(i / 30.0, j / 30.0) - surface.point(i / 30.0, j / 30.0)).norm());
+        worst = std::max(
+            worst, (refined.point(i / 30.0, j / 30.0) - surface.point(i / 30.0, j / 30.0)).norm());
       }
     }
     // Knot insertion is exact in exact arithmetic: rounding of the convex combinations.
@@ -40,8 +40,9 @@ TEST(SwungRefinement, SurfaceIsUnchangedAndGainsControlPointsPerSpan) {
   }
   const SwungSurface same = refine_swung_surface(swung_sphere(1.0), 0, 0);
   EXPECT_EQ(same.profile().control_points(), swung_sphere(1.0).profile().control_points());
-  EXPECT_NE(testing::error_message([] { (void)refine_swung_surface(swung_sphere(1.0), 0, -1); })
-                .find("trajectory knots per span is -1"),
+  EXPECT_NE(testing::error_message([] {
+              (void)refine_swung_surface(swung_sphere(1.0), 0, -1);
+            }).find("trajectory knots per span is -1"),
             std::string::npos);
 }
 

@@ -119,10 +119,9 @@ TEST(SwungOpenProfile, IsTheStraightSegmentSweptAroundTheAxis) {
               (void)swung_open_profile(1.0, 1.0, 1.0, 1.0);
             }).find("has zero length"),
             std::string::npos);
-  EXPECT_NE(testing::error_message([] {
-              (void)swung_open_profile(-1.0, 0.0, 1.0, 1.0);
-            }).find("x0 = -1"),
-            std::string::npos);
+  EXPECT_NE(
+      testing::error_message([] { (void)swung_open_profile(-1.0, 0.0, 1.0, 1.0); }).find("x0 = -1"),
+      std::string::npos);
   EXPECT_NE(testing::error_message([] {
               (void)swung_open_profile(1.0, std::nan(""), 1.0, 1.0);
             }).find("z0 is nan"),

@@ -525,7 +525,8 @@ TEST(SwungSpring, PullMatchesTheTensorProductTwinRestrictedToSwungMotions) {
   settings.newton_iterations = 10;
   std::vector<System> systems = {System(swung), System(restricted), System(twin)};
   for (System& system : systems) {
-    system.add_force(0, spring_force(at, [target](double) { return target; }, 20.0));
+    system.add_force(0, spring_force(
+                            at, [target](double) { return target; }, 20.0));
     Integrator integrator(settings);
     for (int k = 0; k < 100; ++k) {
       integrator.step(system, 0.01);
@@ -567,8 +568,9 @@ TEST(SwungModel, SemiImplicitStepperSettlesAtTheNewmarkEquilibrium) {
   const auto add_springs = [](System& system) {
     for (const double pole : {-1.0, 1.0}) {
       const Eigen::Vector3d target(0.0, 0.0, 1.5 * pole);
-      system.add_force(0, spring_force(Eigen::Vector2d((pole + 1.0) / 2.0, 0.0),
-                                       [target](double) { return target; }, 5.0));
+      system.add_force(0, spring_force(
+                              Eigen::Vector2d((pole + 1.0) / 2.0, 0.0),
+                              [target](double) { return target; }, 5.0));
     }
   };
   std::vector<System> systems(2, System(model));

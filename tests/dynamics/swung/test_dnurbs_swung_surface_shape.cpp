@@ -201,8 +201,8 @@ double normal_violation(double dt, bool constrained, bool projection) {
   solver.set_projection(projection);
   const Eigen::Vector2d pulled(0.4, 0.05);
   const Eigen::Vector3d start = system.position(0, pulled);
-  system.add_force(
-      0, spring_force(pulled, [start](double t) { return (1.0 + 0.3 * t) * start; }, 20.0));
+  system.add_force(0, spring_force(
+                          pulled, [start](double t) { return (1.0 + 0.3 * t) * start; }, 20.0));
   IntegratorSettings settings;
   settings.newton_iterations = 4;
   Integrator integrator(settings);

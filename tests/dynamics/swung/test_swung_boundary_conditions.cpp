@@ -21,8 +21,9 @@ TEST(SwungBoundaryConditions, PointsMapToInPlaneCoordinates) {
   EXPECT_EQ(swung_point_coordinates(layout, 0), (std::vector<int>{0, 1}));
   EXPECT_EQ(swung_point_coordinates(layout, 4), (std::vector<int>{12, 13}));
   EXPECT_EQ(swung_point_coordinates(layout, 5), (std::vector<int>{15, 16}));  // trajectory 0
-  EXPECT_NE(testing::error_message([&] { (void)swung_point_coordinates(layout, 13); })
-                .find("point 13 does not exist"),
+  EXPECT_NE(testing::error_message([&] {
+              (void)swung_point_coordinates(layout, 13);
+            }).find("point 13 does not exist"),
             std::string::npos);
 }
 

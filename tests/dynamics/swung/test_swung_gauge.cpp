@@ -43,8 +43,8 @@ TEST(SwungGauge, CoordinateAndWhatRemovesTheGauge) {
   EXPECT_EQ(gauge, layout.profile_offset(2));  // the equator among three points with x = 1
   // Poles (x = 0), z coordinates and the gauge itself do not remove it...
   EXPECT_FALSE(fixes_swung_scaling_gauge(
-      layout, q, gauge, {layout.profile_offset(0), layout.profile_offset(4), gauge,
-                         layout.profile_offset(2) + 1}));
+      layout, q, gauge,
+      {layout.profile_offset(0), layout.profile_offset(4), gauge, layout.profile_offset(2) + 1}));
   // ...another profile x off the axis or a trajectory point off the origin does.
   EXPECT_TRUE(fixes_swung_scaling_gauge(layout, q, gauge, {layout.profile_offset(1)}));
   EXPECT_TRUE(fixes_swung_scaling_gauge(layout, q, gauge, {layout.trajectory_offset(3) + 1}));

@@ -43,7 +43,8 @@ TEST(SwungParametricSurface, DomainEqualsTheTwinsAndFindsPolesAndSeams) {
   }
   const ParameterDomain cone = swung_parameter_domain(swung_cone(1.0, 2.0));
   EXPECT_TRUE(!cone.pole_u_min && cone.pole_u_max && cone.periodic_v);  // the apex at u = 1
-  const ParameterDomain open = swung_parameter_domain(testing::random_swung_surface(3, 2, 5, false));
+  const ParameterDomain open =
+      swung_parameter_domain(testing::random_swung_surface(3, 2, 5, false));
   EXPECT_FALSE(open.periodic_v || open.periodic_u || open.pole_u_min || open.pole_u_max);
 }
 
@@ -76,8 +77,9 @@ TEST(SwungParametricSurface, SurfaceWithoutAreaIsRejected) {
   Eigen::MatrixX3d axis = Eigen::MatrixX3d::Zero(5, 3);
   axis.col(2) = Eigen::VectorXd::LinSpaced(5, -1.0, 1.0);
   const SwungSurface line(NurbsCurve(sphere.profile().knots(), axis), sphere.trajectory());
-  EXPECT_NE(testing::error_message([&] { (void)swung_normal_orientation(line); })
-                .find("the surface has no area"),
+  EXPECT_NE(testing::error_message([&] {
+              (void)swung_normal_orientation(line);
+            }).find("the surface has no area"),
             std::string::npos);
 }
 

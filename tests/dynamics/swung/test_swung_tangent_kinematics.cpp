@@ -44,8 +44,9 @@ TEST(SwungTangentKinematics, WrappedColumnsAreSortedAndRepeatedOnesSummed) {
   // Order 0 carries no tangents.
   SwungJacobian points;
   swung_jacobian(sphere, 0.3, 0.5, 0, WeightMode::kFixed, points);
-  EXPECT_NE(testing::error_message([&] { swung_tangent_kinematics(points, qd, rates, tangents); })
-                .find("order >= 1"),
+  EXPECT_NE(testing::error_message([&] {
+              swung_tangent_kinematics(points, qd, rates, tangents);
+            }).find("order >= 1"),
             std::string::npos);
 }
 

@@ -64,9 +64,9 @@ TEST(SwungSurfaceScene, PrototypesBuildTheSurfacesTheyName) {
       {R"({"kind": "open_profile", "start": [0, 0.5], "end": [2, 0], "profile_control_points": 5})",
        swung_open_profile(0, 0.5, 2, 0, 5)}};
   for (const Case& c : cases) {
-    const Scene scene = parse_scene_json(scene_with(
-        std::string(R"({"name": "s", "type": "swung_surface", "prototype": )") + c.prototype +
-        "}"));
+    const Scene scene = parse_scene_json(
+        scene_with(std::string(R"({"name": "s", "type": "swung_surface", "prototype": )") +
+                   c.prototype + "}"));
     const SwungSurface& surface = swung_spec(scene).surface;
     EXPECT_EQ(surface.profile().control_points(), c.expected.profile().control_points())
         << c.prototype;
@@ -122,8 +122,8 @@ TEST(SwungSurfaceScene, CurvesComeInlineOrFromShapeFilesAndRoundTrip) {
     EXPECT_TRUE(json.contains(item.key())) << item.key();
   }
   // The prototype form round-trips too, writing its kind's keys only.
-  const Scene prototype = parse_scene_json(
-      scene_with(R"({"type": "swung_surface", "prototype": {"kind": "hat"}})"));
+  const Scene prototype =
+      parse_scene_json(scene_with(R"({"type": "swung_surface", "prototype": {"kind": "hat"}})"));
   const std::string prototype_written = scene_to_json(prototype);
   EXPECT_TRUE(parse_scene_json(prototype_written) == prototype);
   EXPECT_EQ(Json::parse(prototype_written).at("models")[0].at("prototype"),
@@ -275,7 +275,8 @@ double rotational_asymmetry(const SceneSimulation& simulation) {
     Eigen::Vector2d low(1e300, 1e300);
     Eigen::Vector2d high(-1e300, -1e300);
     for (int j = 0; j < 64; ++j) {
-      const Eigen::Vector3d x = simulation.system().position(0, Eigen::Vector2d(i / 40.0, j / 64.0));
+      const Eigen::Vector3d x =
+          simulation.system().position(0, Eigen::Vector2d(i / 40.0, j / 64.0));
       const Eigen::Vector2d radius_height(x.head<2>().norm(), x.z());
       low = low.cwiseMin(radius_height);
       high = high.cwiseMax(radius_height);
@@ -295,7 +296,7 @@ TEST(SwungSurfaceScene, FigureSixScenesKeepTheirSymmetriesAndBoundaries) {
         simulation.system().coordinates() - simulation.system().model(0).initial_coordinates();
     std::cout << name << ": rotational asymmetry " << asymmetry << ", coordinates moved "
               << moved.norm() << "\n";
-    EXPECT_LT(asymmetry, 1e-12) << name;  // round-off of the circle's evaluation (~4e-16)
+    EXPECT_LT(asymmetry, 1e-12) << name;   // round-off of the circle's evaluation (~4e-16)
     EXPECT_GT(moved.norm(), 0.3) << name;  // sculpted
   }
   // The egg is taller than wide and wider below its middle than above.
