@@ -78,6 +78,27 @@ inline double largest_distance(const Model& a, const Eigen::VectorXd& qa, const 
   return largest;
 }
 
+/// Largest spread over v of the distance from the z axis and of z, over the (u_count + 1) x
+/// v_count parameters (i / u_count, j / v_count): zero for a surface of revolution about z.
+inline double rotational_asymmetry(const Model& model, const Eigen::VectorXd& q, int u_count = 50,
+                                   int v_count = 97) {
+  double spread = 0.0;
+  for (int i = 0; i <= u_count; ++i) {
+    Eigen::Vector2d low(1e300, 1e300);
+    Eigen::Vector2d high(-1e300, -1e300);
+    for (int j = 0; j < v_count; ++j) {
+      const Eigen::Vector3d x =
+          model.position(q, Eigen::Vector2d(i / static_cast<double>(u_count),
+                                            j / static_cast<double>(v_count)));
+      const Eigen::Vector2d radius_height(x.head<2>().norm(), x.z());
+      low = low.cwiseMin(radius_height);
+      high = high.cwiseMax(radius_height);
+    }
+    spread = std::max(spread, (high - low).maxCoeff());
+  }
+  return spread;
+}
+
 /// The tensor-product twin's coordinates Q(q): control point (i, j) = (alpha x_i X_j,
 /// alpha x_i Y_j, z_i) at 3 (i n + j) (fixed weights) or 4 (i n + j) with weight w_i W_j.
 inline Eigen::VectorXd twin_coordinates(const DNurbsSwungSurface& model, const Eigen::VectorXd& q) {

@@ -36,6 +36,7 @@ using testing::ModelCase;
 using testing::perturbed;
 using testing::plate_material;
 using testing::random_vector;
+using testing::rotational_asymmetry;
 using testing::settings_for;
 using testing::twin_chain_rule;
 
@@ -385,23 +386,6 @@ TEST(SwungDynamics, FreeMotionConservesEnergyToSecondOrderInTimeStep) {
     EXPECT_LT(fine / finer, 4.2) << name;
     EXPECT_LT(finer, 1e-4) << name;  // measured 2.7e-7 (sphere) and 4.8e-5 (random)
   }
-}
-
-// Largest spread over v of the distance to the axis and of z, over 51 x 97 parameters.
-double rotational_asymmetry(const DNurbsSwungSurface& model, const Eigen::VectorXd& q) {
-  double spread = 0.0;
-  for (int i = 0; i <= 50; ++i) {
-    Eigen::Vector2d low(1e300, 1e300);
-    Eigen::Vector2d high(-1e300, -1e300);
-    for (int j = 0; j < 97; ++j) {
-      const Eigen::Vector3d x = model.position(q, Eigen::Vector2d(i / 50.0, j / 97.0));
-      const Eigen::Vector2d radius_height(x.head<2>().norm(), x.z());
-      low = low.cwiseMin(radius_height);
-      high = high.cwiseMax(radius_height);
-    }
-    spread = std::max(spread, (high - low).maxCoeff());
-  }
-  return spread;
 }
 
 // An egg sculpted from a sphere: a normal force per unit parametric area that grows towards the

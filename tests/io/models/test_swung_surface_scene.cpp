@@ -20,6 +20,7 @@
 #include "io/scene.h"
 #include "io/scene_simulation.h"
 #include "nurbs/swung_shapes.h"
+#include "tests/dynamics/swung/swung_model_helpers.h"
 
 namespace dnurbs {
 namespace {
@@ -268,30 +269,13 @@ SceneSimulation run_to_end(const std::filesystem::path& path) {
   return simulation;
 }
 
-// Largest spread over v of the distance from the axis and of z, over 41 x 64 parameters.
-double rotational_asymmetry(const SceneSimulation& simulation) {
-  double spread = 0.0;
-  for (int i = 0; i <= 40; ++i) {
-    Eigen::Vector2d low(1e300, 1e300);
-    Eigen::Vector2d high(-1e300, -1e300);
-    for (int j = 0; j < 64; ++j) {
-      const Eigen::Vector3d x =
-          simulation.system().position(0, Eigen::Vector2d(i / 40.0, j / 64.0));
-      const Eigen::Vector2d radius_height(x.head<2>().norm(), x.z());
-      low = low.cwiseMin(radius_height);
-      high = high.cwiseMax(radius_height);
-    }
-    spread = std::max(spread, (high - low).maxCoeff());
-  }
-  return spread;
-}
-
 TEST(SwungSurfaceScene, FigureSixScenesKeepTheirSymmetriesAndBoundaries) {
   // The egg, the hat and the wine glass hold their trajectory (the unit circle): surfaces of
   // revolution to round-off whatever the springs do.
   for (const char* name : {"swung_egg.json", "swung_hat.json", "swung_wine_glass.json"}) {
     const SceneSimulation simulation = run_to_end(kExamples / name);
-    const double asymmetry = rotational_asymmetry(simulation);
+    const double asymmetry = testing::rotational_asymmetry(
+        simulation.system().model(0), simulation.system().coordinates(), 40, 64);
     const Eigen::VectorXd moved =
         simulation.system().coordinates() - simulation.system().model(0).initial_coordinates();
     std::cout << name << ": rotational asymmetry " << asymmetry << ", coordinates moved "
