@@ -106,7 +106,7 @@ TEST(SwungOpenProfile, IsTheStraightSegmentSweptAroundTheAxis) {
       const double v = j / 20.0;
       // Greville-spaced collinear control points: the profile is linear in u (rounding).
       EXPECT_NEAR(disk.point(u, v).head<2>().norm(), 1.5 * u, 1e-14);
-      EXPECT_EQ(disk.point(u, v).z(), 0.4);
+      EXPECT_NEAR(disk.point(u, v).z(), 0.4, 1e-15);  // sum N_i = 1 up to rounding
       EXPECT_NEAR(band.point(u, v).head<2>().norm(), 1.0 + u, 1e-14);
       EXPECT_NEAR(band.point(u, v).z(), u, 1e-14);
     }
