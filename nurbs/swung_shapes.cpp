@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/error.h"
 #include "nurbs/primitive_shapes.h"
@@ -63,18 +64,36 @@ SwungSurface swung_torus(double major_radius, double minor_radius) {
                       unit_circle_trajectory());
 }
 
+SwungSurface swung_open_profile(double x0, double z0, double x1, double z1,
+                                int profile_control_points) {
+  for (const auto& [value, name] :
+       {std::pair{x0, "x0"}, std::pair{z0, "z0"}, std::pair{x1, "x1"}, std::pair{z1, "z1"}}) {
+    if (!std::isfinite(value)) {
+      throw make_error("swung open profile ", name, " is ", value, ", must be finite");
+    }
+  }
+  if (x0 < 0.0 || x1 < 0.0 || (x0 == 0.0 && x1 == 0.0)) {
+    throw make_error("swung open profile x0 = ", x0, ", x1 = ", x1,
+                     ": both must be >= 0 and one > 0 (the distance from the axis)");
+  }
+  if (x0 == x1 && z0 == z1) {
+    throw make_error("swung open profile from (", x0, ", ", z0, ") to (", x1, ", ", z1,
+                     ") has zero length");
+  }
+  return SwungSurface(straight_profile(x0, z0, x1, z1, profile_control_points),
+                      unit_circle_trajectory());
+}
+
 SwungSurface swung_cylinder(double radius, double height, int profile_control_points) {
   check_positive(radius, "swung cylinder radius");
   check_positive(height, "swung cylinder height");
-  return SwungSurface(straight_profile(radius, 0.0, radius, height, profile_control_points),
-                      unit_circle_trajectory());
+  return swung_open_profile(radius, 0.0, radius, height, profile_control_points);
 }
 
 SwungSurface swung_cone(double radius, double height, int profile_control_points) {
   check_positive(radius, "swung cone radius");
   check_positive(height, "swung cone height");
-  return SwungSurface(straight_profile(radius, 0.0, 0.0, height, profile_control_points),
-                      unit_circle_trajectory());
+  return swung_open_profile(radius, 0.0, 0.0, height, profile_control_points);
 }
 
 SwungSurface swung_hat(double brim_radius, double crown_radius, double height) {

@@ -22,13 +22,19 @@ SwungSurface swung_sphere(double radius);
 /// Throws Error unless 0 < minor_radius < major_radius.
 SwungSurface swung_torus(double major_radius, double minor_radius);
 
-/// The open cylinder x^2 + y^2 = r^2, 0 <= z <= height: a straight profile of
-/// `profile_control_points` (>= 2) control points at the Greville abscissae of a clamped uniform
-/// knot vector of degree min(3, count - 1), so that z grows linearly with u.
+/// The surface swung from the straight open profile from (x0, 0, z0) to (x1, 0, z1) (x0, x1 >= 0,
+/// not both 0, and a profile of non-zero length): `profile_control_points` (>= 2) control points
+/// at the Greville abscissae of a clamped uniform knot vector of degree min(3, count - 1), so
+/// that the profile is linear in u. A disk (z0 = z1, x0 = 0), an annulus, a cylinder or a cone;
+/// an end with x = 0 lies on the axis (a pole). Throws Error naming the value otherwise.
+SwungSurface swung_open_profile(double x0, double z0, double x1, double z1,
+                                int profile_control_points = 4);
+
+/// The open cylinder x^2 + y^2 = r^2, 0 <= z <= height: swung_open_profile(r, 0, r, height).
 SwungSurface swung_cylinder(double radius, double height, int profile_control_points = 4);
 
-/// The cone from the circle of radius r at z = 0 to the apex (0, 0, height): a straight profile
-/// built like swung_cylinder's; its last control point lies on the axis.
+/// The cone from the circle of radius r at z = 0 to the apex (0, 0, height):
+/// swung_open_profile(r, 0, 0, height); its last control point lies on the axis.
 SwungSurface swung_cone(double radius, double height, int profile_control_points = 4);
 
 /// An open hat: a cubic profile from the apex (0, 0, height) on the axis over a flat top to the

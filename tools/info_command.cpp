@@ -89,9 +89,16 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
           << c.naive_active << " active coordinates";
       if (c.constant_matrices && !c.naive_constant_matrices) {
         out << ", constant instead of state-dependent matrices";
+      } else if (!c.constant_matrices && c.naive_constant_matrices) {
+        out << ", state-dependent instead of constant matrices";
       }
-      out << ", one solve " << ratio(c.naive_solve_work / c.solve_work)
-          << "x cheaper (estimated)\n";
+      // A choice that saves coordinates may still cost more per solve (a swung surface
+      // re-factors its small dense matrix where its tensor-product twin back-substitutes)
+      const double saving = c.naive_solve_work / c.solve_work;
+      out << ", one solve "
+          << (saving >= 1.0 ? ratio(saving) + "x cheaper"
+                            : ratio(1.0 / saving) + "x more expensive")
+          << " (estimated)\n";
     }
   }
   out << "system: " << system.coordinate_count() << " coordinates, " << system.velocity_count()

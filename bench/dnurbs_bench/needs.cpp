@@ -4,11 +4,15 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "bench_scenes.h"
 #include "dynamics/core/forces.h"
 #include "dynamics/dnurbs/local_sculpting.h"
 #include "dynamics/integrators/static_equilibrium.h"
+#include "dynamics/swung/dnurbs_swung_surface.h"
+#include "nurbs/swung_refinement.h"
+#include "nurbs/swung_shapes.h"
 #include "step_timing.h"
 
 namespace dnurbs::bench {
@@ -91,6 +95,44 @@ void run_needs(const BenchOptions& options, BoundChecks& checks) {
         seconds_per_step(body, IntegratorSettings{}, 1e-2, minimum_seconds);
     const double together = seconds_per_step(mixed, IntegratorSettings{}, 1e-2, minimum_seconds);
     report("mixed_scene_block_factorization", mixed, mixed, separate, together);
+  }
+  // A swung surface against the tensor-product D-NURBS surface of the same shape and resolution
+  // (Qin & Terzopoulos, Dynamic NURBS swung surfaces, CAD 27(2) 1995): the exact sphere, both
+  // curves refined by k knots per span, pulled by a spring, same material, Newmark with one
+  // Newton iteration for both. The swung model has 2 (m + n) coordinates against 3 m n, but
+  // re-assembles its dense profile-trajectory coupling and re-factors it every step; the twin
+  // (fixed weights) factors its constant scalar matrix once and back-substitutes. They model
+  // different motions (the twin may dent locally), so no error against the twin is given.
+  for (const int knots : options.quick ? std::vector<int>{0} : std::vector<int>{0, 3, 7, 15}) {
+    const SwungSurface sphere = refine_swung_surface(swung_sphere(1.0), knots, knots);
+    DNurbsSurfaceMaterial material;
+    material.damping_density = 1.0;
+    material.a10 = material.a01 = 0.05;
+    material.b20 = material.b02 = 0.005;
+    DNurbsSwungSurface swung(sphere, material);
+    swung.fix_poles();
+    System chosen(swung);
+    System naive(DNurbsSurface(sphere.to_nurbs_surface(), material));
+    const Eigen::Vector2d at(0.3, 0.1);
+    const Eigen::Vector3d target = 1.2 * sphere.point(at.x(), at.y());
+    for (System* system : {&chosen, &naive}) {
+      system->add_force(0, spring_force(
+                               at, [target](double) { return target; }, 5.0));
+    }
+    IntegratorSettings settings;
+    settings.newton_iterations = 1;
+    int restarts = 0;
+    const double naive_step = seconds_per_step(naive, settings, 1e-2, minimum_seconds, &restarts);
+    const double chosen_step =
+        seconds_per_step(chosen, settings, 1e-2, minimum_seconds, &restarts);
+    if (restarts > 0) {
+      std::cerr << "needs: swung sphere (" << knots << " knots per span) restarted " << restarts
+                << " times\n";
+    }
+    report("swung_sphere_" + std::to_string(sphere.profile().control_point_count()) + "x" +
+               std::to_string(sphere.trajectory().control_point_count()) +
+               "_against_tensor_product",
+           chosen, naive, naive_step, chosen_step);
   }
   // PDE surface: deformation region against the whole grid.
   {

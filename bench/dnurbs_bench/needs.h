@@ -6,7 +6,9 @@
 //   - a rigid superquadric steps as a 6-coordinate body (against the same body with its global
 //     and local deformations as coordinates);
 //   - PDE-surface nodes outside every deformation region are not simulated (against the
-//     whole grid).
+//     whole grid);
+//   - a surface of revolution sculpted as a swung surface, 2 (m + n) coordinates (against the
+//     tensor-product surface of the same shape, 3 m n).
 // Writes needs.csv (model, active and total coordinates, constant matrices, naive and chosen
 // seconds per step, saving ratio).
 

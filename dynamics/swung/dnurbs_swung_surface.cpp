@@ -5,6 +5,8 @@
 
 #include "core/error.h"
 #include "dynamics/swung/swung_element_assembly.h"
+#include "dynamics/swung/swung_gauge.h"
+#include "dynamics/swung/swung_parametric_surface.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {
@@ -93,37 +95,14 @@ SparseMatrix coupling_pattern(const SwungSurface& surface, const SwungLayout& la
   return pattern;
 }
 
-// The scaling gauge's coordinate: the profile x of largest magnitude, ties going to the point
-// nearest the middle of the profile (a sphere's equator point). Throws Error if every x is 0.
-int largest_profile_x(const SwungLayout& layout, const Eigen::VectorXd& q) {
-  double largest = 0.0;
-  const int middle = layout.profile_count - 1;  // twice the middle index
-  int best_distance = 0;
-  int gauge = -1;
-  for (int i = 0; i < layout.profile_count; ++i) {
-    const int index = layout.profile_offset(i);
-    const double x = std::abs(q[index]);
-    const int distance = std::abs(2 * i - middle);
-    if (x > largest || (x == largest && x > 0.0 && distance < best_distance)) {
-      largest = x;
-      best_distance = distance;
-      gauge = index;
-    }
-  }
-  if (gauge < 0) {
-    throw make_error(
-        "every profile control point is on the z axis (x = 0): the swung surface is degenerate "
-        "and its scaling gauge cannot be fixed");
-  }
-  return gauge;
-}
-
 }  // namespace
 
 DNurbsSwungSurface::DNurbsSwungSurface(const SwungSurface& surface,
                                        const DNurbsSurfaceMaterial& material,
                                        const DNurbsSwungSettings& settings)
     : surface_(surface),
+      material_(material),
+      settings_(settings),
       layout_(swung_layout(surface, settings.weight_mode)),
       minimum_weight_(settings.minimum_weight),
       geometric_stiffness_(settings.geometric_stiffness),
@@ -175,13 +154,16 @@ DNurbsSwungSurface::DNurbsSwungSurface(const SwungSurface& surface,
 
   // Gauges: the scaling (fix the profile x of largest magnitude) and each curve's weight scale -
   if (settings.fix_gauge) {
-    gauge_coordinate_ = largest_profile_x(layout_, initial_coordinates_);
+    gauge_coordinate_ = swung_scaling_gauge_coordinate(layout_, initial_coordinates_);
     fix_coordinate(gauge_coordinate_);
     if (free) {
       fix_coordinate(layout_.profile_offset(0) + 2);
       fix_coordinate(layout_.trajectory_offset(0) + 2);
     }
   }
+
+  // The outward side of the initial surface (after the gauge: its error names the axis profile)
+  orientation_ = swung_normal_orientation(surface);
 }
 
 // -----------------------------------------------------------------------------------------------
@@ -441,41 +423,6 @@ int DNurbsSwungSurface::trajectory_offset(int j) const {
                      layout_.trajectory_count - 1);
   }
   return layout_.trajectory_offset(j);
-}
-
-void DNurbsSwungSurface::fix_profile_point(int i) {
-  const int offset = profile_offset(i);
-  fix_coordinate(offset);
-  fix_coordinate(offset + 1);
-}
-
-void DNurbsSwungSurface::fix_trajectory_point(int j) {
-  const int offset = trajectory_offset(j);
-  fix_coordinate(offset);
-  fix_coordinate(offset + 1);
-}
-
-void DNurbsSwungSurface::fix_profile() {
-  for (int index = 0; index < layout_.trajectory_offset(0); ++index) {
-    fix_coordinate(index);
-  }
-}
-
-void DNurbsSwungSurface::fix_trajectory() {
-  for (int index = layout_.trajectory_offset(0); index < coordinate_count(); ++index) {
-    fix_coordinate(index);
-  }
-}
-
-void DNurbsSwungSurface::fix_poles() {
-  if (surface_.profile().is_periodic()) {
-    return;
-  }
-  for (const int i : {0, layout_.profile_count - 1}) {
-    if (initial_coordinates_[layout_.profile_offset(i)] == 0.0) {
-      fix_coordinate(layout_.profile_offset(i));
-    }
-  }
 }
 
 SwungSurface DNurbsSwungSurface::surface(const ConstVectorRef& q) const {

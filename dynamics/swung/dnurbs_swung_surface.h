@@ -14,6 +14,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -48,16 +49,18 @@ struct DNurbsSwungSettings {
   /// Fixes the gauges, the directions along which the surface does not move so M is singular:
   /// the scaling (p_x, t) -> (c p_x, t / c) always, by fixing the profile x coordinate of
   /// largest magnitude (gauge_coordinate(); among equal ones the nearest to the middle of the
-  /// profile, a sphere's equator point); and with free weights the common
-  /// scaling of each curve's weights, by fixing weight 0 of the profile and of the trajectory.
-  /// None of these restricts the shape (locally: any nearby shape is reached with them fixed).
-  /// The scaling is fixed on the profile, not the trajectory, so that a step that leaves some
-  /// residual along the gauge (a linearly implicit step with the exact tangent stiffness, which
-  /// the gauge direction does not annihilate where E is stretched) scales the trajectory
-  /// uniformly and a surface of revolution stays one; pinning one trajectory coordinate instead
-  /// turned that residual into an out-of-round trajectory (3e-7 after 10 steps of the egg test).
-  /// Switch it off only when something else breaks the scaling, e.g. the whole profile or
-  /// trajectory is fixed (then the gauge coordinate would be a real constraint).
+  /// profile, a sphere's equator point; dynamics/swung/swung_gauge.h); and with free weights the
+  /// common scaling of each curve's weights, by fixing weight 0 of the profile and of the
+  /// trajectory. None of these restricts the shape (locally: any nearby shape is reached with
+  /// them fixed). The scaling is fixed on the profile, not the trajectory, so that a step that
+  /// leaves some residual along the gauge (a linearly implicit step with the exact tangent
+  /// stiffness, which the gauge direction does not annihilate where E is stretched) scales the
+  /// trajectory uniformly and a surface of revolution stays one; pinning one trajectory
+  /// coordinate instead turned that residual into an out-of-round trajectory (3e-7 after 10
+  /// steps of the egg test). The model's own fix functions release the scaling gauge
+  /// coordinate when what they fix already breaks the scaling (a trajectory point off the
+  /// origin, a profile point off the axis: then the gauge coordinate would be a real
+  /// constraint); Model::fix_coordinate does not.
   bool fix_gauge = true;
   /// The assembled stiffness (the K_T of the step matrix M + c_v D + c_q K_T) is the Gauss-Newton
   /// part integral sum_Q k_Q J_Q^T J_Q of d^2E/dq^2 (false, the default: positive
@@ -110,7 +113,17 @@ struct DNurbsSwungSettings {
 ///
 /// A swung surface has no 3-D control points among its coordinates: control_point_offset()
 /// throws (forces and constraints on control points address the curve coordinates through
-/// profile_offset() / trajectory_offset() and fixed coordinates instead).
+/// profile_offset() / trajectory_offset() and fixed coordinates instead). Its points, for
+/// fix_point, are the profile's control points 0..m-1 and the trajectory's m..m+n-1.
+///
+/// Shape: the exact shape is the tensor-product twin (SwungSurface::to_nurbs_surface), the
+/// parametric surface the swung surface itself with exact normals turned outward
+/// (dynamics/swung/swung_parametric_surface.h); tessellation is the contract's default through
+/// it. Local sculpting (freeze_outside) is not supported: every profile control point moves a
+/// whole band of the surface around the axis and every trajectory point a whole strip from
+/// pole to pole, so freezing the points away from a region does not keep the motion near it.
+/// Neither is the semi-implicit step's scalar (node by node) path: semi_implicit_block_size()
+/// is 0 and the stepper takes assemble_matrices(q), whose tangent stiffness linearizes f_int.
 class DNurbsSwungSurface : public Model {
  public:
   /// Throws Error naming the value for a bad material value at a quadrature point, a weight
@@ -146,6 +159,32 @@ class DNurbsSwungSurface : public Model {
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
   void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
+  /// Free weights: lower[w] = minimum_weight() for every weight coordinate (fixed weights: none).
+  void coordinate_lower_bounds(VectorRef lower) const override;
+
+  // Shape (Model contract) -------------------------------------------------------------------
+  /// swung_parameter_domain of the surface at q: poles where an open profile meets the axis,
+  /// periodic where a curve is periodic or closed.
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// The outward side of the initial surface (swung_normal_orientation), fixed at construction.
+  NormalOrientation normal_orientation() const override { return orientation_; }
+  /// The swung surface at q with its exact normals, turned to normal_orientation().
+  ParametricSurface parametric_surface(ConstVectorRef q) const override;
+  /// The tensor-product twin of the surface at q (SwungSurface::to_nurbs_surface): shape files,
+  /// export and curve-on-surface constraints see the exact shape.
+  std::optional<Shape> exact_shape(ConstVectorRef q) const override;
+  /// S_u, S_v at u with their Jacobians (profile and trajectory columns), J_u qd, J_v qd and
+  /// Jdot_u qd, Jdot_v qd (swung_tangent_kinematics): surface normal constraints.
+  void tangent_kinematics(ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u,
+                          TangentKinematics& tangents) const override;
+
+  // Boundary conditions (Model contract) -----------------------------------------------------
+  /// Fixes point i: profile control point i (0 <= i < m) or trajectory control point i - m
+  /// (swung_point_coordinates); throws Error naming i otherwise.
+  void fix_point(int i) override;
+  /// Fixes the coordinates that hold the border edges (swung_border_coordinates over
+  /// parameter_domain of the initial shape); throws Error for a closed surface (no border).
+  void fix_border() override;
 
   // Swung coordinates ------------------------------------------------------------------------
   const SwungLayout& layout() const { return layout_; }
@@ -155,10 +194,13 @@ class DNurbsSwungSurface : public Model {
   /// trajectory control point j (y follows, then the weight); throw Error for a bad index.
   int profile_offset(int i) const;
   int trajectory_offset(int j) const;
-  /// The coordinate fixed for the scaling gauge (-1 if fix_gauge is off).
+  /// The coordinate fixed for the scaling gauge (-1 if fix_gauge is off or the gauge was
+  /// released because a fix already breaks the scaling).
   int gauge_coordinate() const { return gauge_coordinate_; }
   /// Fixes the in-plane coordinates of profile control point i / trajectory control point j
-  /// (a free weight stays free), or every coordinate of the profile / trajectory.
+  /// (a free weight stays free), or every coordinate of the profile / trajectory. Each releases
+  /// the scaling gauge coordinate when what it fixes breaks the scaling (DNurbsSwungSettings::
+  /// fix_gauge).
   void fix_profile_point(int i);
   void fix_trajectory_point(int j);
   void fix_profile();
@@ -184,6 +226,11 @@ class DNurbsSwungSurface : public Model {
 
  private:
   void check_size(const ConstVectorRef& q, const char* what) const;
+  // Fixes `coordinates`, releasing the scaling gauge coordinate first if they break the scaling.
+  void fix_coordinates(const std::vector<int>& coordinates);
+  // Rebuilds the model without the scaling gauge coordinate (the base class has no way to unfix
+  // a coordinate), keeping every other fixed coordinate, and the gauge one if a fix asked for it.
+  void release_gauge();
   // Rational samples of both curves at a parameter / at every Gauss point, at state q.
   void samples_at(const ConstVectorRef& q, const Eigen::Vector2d& u, PlanarCurveSample& profile,
                   PlanarCurveSample& trajectory) const;
@@ -191,6 +238,9 @@ class DNurbsSwungSurface : public Model {
                           std::vector<PlanarCurveSample>& trajectory) const;
 
   SwungSurface surface_;
+  // As given (release_gauge rebuilds the model from them).
+  DNurbsSurfaceMaterial material_;
+  DNurbsSwungSettings settings_;
   SwungLayout layout_;
   SwungQuadrature quadrature_;
   double minimum_weight_ = 1e-3;
@@ -199,6 +249,8 @@ class DNurbsSwungSurface : public Model {
   bool separable_ = false;               // fixed weights, constant material and the setting on
   SwungSeparableForms separable_forms_;  // built once when separable_
   int gauge_coordinate_ = -1;
+  bool gauge_requested_ = false;  // a fix listed the gauge coordinate itself
+  NormalOrientation orientation_ = NormalOrientation::kSuCrossSv;
   Eigen::VectorXd profile_weights_;     // the weights when they are not coordinates
   Eigen::VectorXd trajectory_weights_;  // (and the initial ones when they are)
   Eigen::VectorXd initial_coordinates_;

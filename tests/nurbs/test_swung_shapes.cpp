@@ -94,6 +94,40 @@ TEST(SwungHat, IsAnOpenSurfaceFromTheApexToTheBrim) {
             std::string::npos);
 }
 
+TEST(SwungOpenProfile, IsTheStraightSegmentSweptAroundTheAxis) {
+  // A disk from the axis out to radius 1.5 at z = 0.4, and a slanted band.
+  const SwungSurface disk = swung_open_profile(0.0, 0.4, 1.5, 0.4, 6);
+  const SwungSurface band = swung_open_profile(1.0, 0.0, 2.0, 1.0, 3);
+  EXPECT_EQ(disk.profile().control_point_count(), 6);
+  EXPECT_EQ(band.profile().degree(), 2);  // min(3, count - 1)
+  for (int i = 0; i <= 20; ++i) {
+    for (int j = 0; j <= 20; ++j) {
+      const double u = i / 20.0;
+      const double v = j / 20.0;
+      // Greville-spaced collinear control points: the profile is linear in u (rounding).
+      EXPECT_NEAR(disk.point(u, v).head<2>().norm(), 1.5 * u, 1e-14);
+      EXPECT_NEAR(disk.point(u, v).z(), 0.4, 1e-15);  // sum N_i = 1 up to rounding
+      EXPECT_NEAR(band.point(u, v).head<2>().norm(), 1.0 + u, 1e-14);
+      EXPECT_NEAR(band.point(u, v).z(), u, 1e-14);
+    }
+  }
+  EXPECT_NE(testing::error_message([] {
+              (void)swung_open_profile(0.0, 0.0, 0.0, 1.0);
+            }).find("both must be >= 0 and one > 0"),
+            std::string::npos);
+  EXPECT_NE(testing::error_message([] {
+              (void)swung_open_profile(1.0, 1.0, 1.0, 1.0);
+            }).find("has zero length"),
+            std::string::npos);
+  EXPECT_NE(
+      testing::error_message([] { (void)swung_open_profile(-1.0, 0.0, 1.0, 1.0); }).find("x0 = -1"),
+      std::string::npos);
+  EXPECT_NE(testing::error_message([] {
+              (void)swung_open_profile(1.0, std::nan(""), 1.0, 1.0);
+            }).find("z0 is nan"),
+            std::string::npos);
+}
+
 TEST(SwungShapes, RejectBadDimensions) {
   EXPECT_NE(testing::error_message([] { (void)swung_sphere(-1.0); }).find("radius"),
             std::string::npos);

@@ -146,6 +146,18 @@ case("local_sculpting_on_snake", f, "models[1].boundary.local_sculpting_margin: 
 def f(s): s["models"][0]["boundary"] = {"local_sculpting_margin": -2}
 case("local_sculpting_negative_margin", f, "models[0].boundary.local_sculpting_margin: expected an integer")
 
+# swung_surface (io/models/swung_surface_scene.cpp)
+def f(s): s["models"].append({"type": "swung_surface", "prototype": {"kind": "cube"}})
+case("swung_unknown_prototype", f, "models[2].prototype.kind: expected one of sphere, torus, cylinder, cone, hat, open_profile")
+def f(s): s["models"].append({"type": "swung_surface", "profile": {"shape": {"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1], "control_points": [[1, 0.5, 0], [1, 0, 1]]}}, "trajectory": {"shape_file": "../circle.json"}})
+case("swung_profile_out_of_plane", f, "models[2].profile: profile control point 0 has y = 0.5")
+def f(s): s["models"].append({"type": "swung_surface", "prototype": {"kind": "sphere"}, "refine": [1, 65]})
+case("swung_refine_too_fine", f, "models[2].refine[1]: expected an integer in 0..64")
+def f(s): s["models"].append({"type": "swung_surface", "prototype": {"kind": "torus"}, "boundary": {"clamp_border": True}})
+case("swung_closed_surface_border", f, "models[2]: this swung surface is closed")
+def f(s): s["models"].append({"type": "swung_surface", "prototype": {"kind": "sphere", "minor_radius": 1}})
+case("swung_prototype_unknown_key", f, "models[2].prototype.minor_radius: unknown key for a sphere prototype")
+
 import sys
 out = os.path.dirname(os.path.abspath(__file__))
 # Hand-written cases (design_*.json) are kept with their lines of expected_messages.tsv

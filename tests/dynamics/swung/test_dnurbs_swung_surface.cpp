@@ -2,13 +2,16 @@
 // surfaces, CAD 27(2) 1995): every matrix and force against the tensor-product D-NURBS twin
 // through the chain rule, the Jacobians, Jdot qd, g, f_int and the tangent stiffness against
 // finite differences, M positive definite once the gauges are fixed, energy conservation of free
-// motion to second order, and rotational symmetry of a swung egg under symmetric forces.
+// motion to second order, rotational symmetry of a swung egg under symmetric forces, a spring
+// pull against the tensor-product twin restricted to swung motions, and the semi-implicit
+// stepper's equilibrium.
 
 #include "dynamics/swung/dnurbs_swung_surface.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -18,86 +21,24 @@
 #include "core/error.h"
 #include "dynamics/core/forces.h"
 #include "dynamics/integrators/integrator.h"
+#include "dynamics/integrators/semi_implicit_step.h"
 #include "nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
+#include "tests/dynamics/swung/swung_model_helpers.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 
 namespace dnurbs {
 namespace {
 
-DNurbsSurfaceMaterial plate_material() {
-  DNurbsSurfaceMaterial material;
-  material.mass_density =
-      MaterialFunction([](const Eigen::Vector2d& u) { return 1.0 + 0.5 * u.x() * u.y(); });
-  material.damping_density = 0.3;
-  material.a10 = 1.0;
-  material.a01 = 0.5;
-  material.b20 = 0.02;
-  material.b11 = 0.01;
-  material.b02 = 0.03;
-  return material;
-}
-
-DNurbsSwungSettings settings_for(WeightMode mode) {
-  DNurbsSwungSettings settings;
-  settings.weight_mode = mode;
-  return settings;
-}
-
-struct ModelCase {
-  const char* name;
-  SwungSurface surface;
-  WeightMode mode;
-};
-
-std::vector<ModelCase> model_cases() {
-  return {
-      {"random, fixed weights", testing::random_swung_surface(3, 2, 61, true), WeightMode::kFixed},
-      {"random, free weights", testing::random_swung_surface(3, 2, 61, true), WeightMode::kFree},
-      {"sphere, fixed weights", swung_sphere(1.2), WeightMode::kFixed},
-      {"torus, free weights", swung_torus(2.0, 0.6), WeightMode::kFree}};
-}
-
-Eigen::VectorXd random_vector(Eigen::Index size, unsigned seed) {
-  std::srand(seed);
-  return Eigen::VectorXd::Random(size);
-}
-
-// A state away from the prototype: q moved by a smooth random perturbation.
-Eigen::VectorXd perturbed(const DNurbsSwungSurface& model, unsigned seed) {
-  Eigen::VectorXd q = model.initial_coordinates();
-  q += 0.05 * random_vector(q.size(), seed);
-  return q;
-}
-
-// chain = dQ/dq: the tensor-product twin's coordinates Q(q) (control points (alpha x_i X_j,
-// alpha x_i Y_j, z_i) and, for free weights, w_i W_j) differentiated by the swung coordinates.
-Eigen::MatrixXd twin_chain_rule(const DNurbsSwungSurface& model, const Eigen::VectorXd& q) {
-  const SwungLayout& layout = model.layout();
-  const double alpha = model.initial_surface().alpha();
-  const bool free = layout.mode == WeightMode::kFree;
-  const int per_node = free ? 4 : 3;
-  const int n = layout.trajectory_count;
-  Eigen::MatrixXd chain = Eigen::MatrixXd::Zero(
-      static_cast<Eigen::Index>(layout.profile_count) * n * per_node, q.size());
-  for (int i = 0; i < layout.profile_count; ++i) {
-    const int p = layout.profile_offset(i);
-    for (int j = 0; j < n; ++j) {
-      const int t = layout.trajectory_offset(j);
-      const int row = (i * n + j) * per_node;
-      chain(row, p) = alpha * q[t];
-      chain(row + 1, p) = alpha * q[t + 1];
-      chain(row + 2, p + 1) = 1.0;
-      chain(row, t) = alpha * q[p];
-      chain(row + 1, t + 1) = alpha * q[p];
-      if (free) {
-        chain(row + 3, p + 2) = q[t + 2];
-        chain(row + 3, t + 2) = q[p + 2];
-      }
-    }
-  }
-  return chain;
-}
+using testing::largest_distance;
+using testing::model_cases;
+using testing::ModelCase;
+using testing::perturbed;
+using testing::plate_material;
+using testing::random_vector;
+using testing::rotational_asymmetry;
+using testing::settings_for;
+using testing::twin_chain_rule;
 
 TEST(SwungModel, MatricesAndForcesEqualTheTensorProductTwinByTheChainRule) {
   for (const ModelCase& c : model_cases()) {
@@ -447,23 +388,6 @@ TEST(SwungDynamics, FreeMotionConservesEnergyToSecondOrderInTimeStep) {
   }
 }
 
-// Largest spread over v of the distance to the axis and of z, over 51 x 97 parameters.
-double rotational_asymmetry(const DNurbsSwungSurface& model, const Eigen::VectorXd& q) {
-  double spread = 0.0;
-  for (int i = 0; i <= 50; ++i) {
-    Eigen::Vector2d low(1e300, 1e300);
-    Eigen::Vector2d high(-1e300, -1e300);
-    for (int j = 0; j < 97; ++j) {
-      const Eigen::Vector3d x = model.position(q, Eigen::Vector2d(i / 50.0, j / 97.0));
-      const Eigen::Vector2d radius_height(x.head<2>().norm(), x.z());
-      low = low.cwiseMin(radius_height);
-      high = high.cwiseMax(radius_height);
-    }
-    spread = std::max(spread, (high - low).maxCoeff());
-  }
-  return spread;
-}
-
 // An egg sculpted from a sphere: a normal force per unit parametric area that grows towards the
 // north pole, p(u) = 0.3 (1 + u), and gravity, against tension and rigidity along the profile.
 // Forces whose density per parametric area rotates with the trajectory (f = (f_r(u) t(v),
@@ -558,6 +482,114 @@ TEST(SwungEgg, PhysicalPressureIsOnlyFourFoldSymmetricOnTheRationalCircle) {
       EXPECT_LT((Eigen::Vector3d(-x.y(), x.x(), x.z()) - y).norm(), 1e-12);  // round-off
     }
   }
+}
+
+// A swung sphere pulled outward at one point by a spring, against the same pull on its
+// tensor-product twin restricted to swung motions (testing::RestrictedTwin: the twin's M, D, K,
+// E, forces and g composed with the map from swung coordinates to the twin's control points,
+// assembled by the tensor-product model) and on the unrestricted twin. Measure: the largest
+// distance between the two surfaces over a 21 x 21 parameter grid after 1 s, relative to the
+// largest displacement of the swung surface. Same integrator (Newmark, Newton iterations to
+// 1e-12) and step for all three.
+TEST(SwungSpring, PullMatchesTheTensorProductTwinRestrictedToSwungMotions) {
+  DNurbsSurfaceMaterial material;
+  material.damping_density = 1.0;
+  material.a10 = 0.05;
+  material.a01 = 0.05;
+  material.b20 = 0.005;
+  material.b11 = 0.002;
+  material.b02 = 0.005;
+  const DNurbsSwungSurface swung(swung_sphere(1.0), material);
+  const testing::RestrictedTwin restricted(swung, material);
+  const DNurbsSurface twin(swung.initial_surface().to_nurbs_surface(), material);
+  const Eigen::Vector2d at(0.3, 0.1);
+  const Eigen::Vector3d start = swung.position(swung.initial_coordinates(), at);
+  const Eigen::Vector3d target = 1.4 * start;  // radially outward by 0.4
+  IntegratorSettings settings;
+  settings.newton_iterations = 10;
+  std::vector<System> systems = {System(swung), System(restricted), System(twin)};
+  for (System& system : systems) {
+    system.add_force(0, spring_force(
+                            at, [target](double) { return target; }, 20.0));
+    Integrator integrator(settings);
+    for (int k = 0; k < 100; ++k) {
+      integrator.step(system, 0.01);
+    }
+  }
+  const Eigen::VectorXd q = systems[0].coordinates();
+  const double displacement = largest_distance(swung, q, swung, swung.initial_coordinates());
+  const double restricted_error =
+      largest_distance(swung, q, restricted, systems[1].coordinates()) / displacement;
+  const double twin_difference =
+      largest_distance(swung, q, twin, systems[2].coordinates()) / displacement;
+  std::cout << "spring pull after 1 s: largest displacement " << displacement
+            << "; swung against the restricted twin " << restricted_error
+            << ", against the free twin " << twin_difference << " (relative)\n";
+  EXPECT_GT(displacement, 0.1);  // the pull moved the surface (measured 1.93)
+  // The same equations assembled two ways (swung separable forms against C^T M_twin C from the
+  // twin's Gauss sums): round-off carried through 100 steps and the Newton tolerance (measured
+  // 3.4e-15).
+  EXPECT_LT(restricted_error, 1e-10);
+  // The free twin dents locally, which no swung motion can: a modeling difference of the order
+  // of the displacement itself (measured 0.54).
+  EXPECT_GT(twin_difference, 0.05);
+}
+
+// The semi-implicit stepper of the grid models (Terzopoulos 2003, eq. 1.13) steps the swung model
+// through the contract's defaults (its assembled matrices, the tangent stiffness linearizing
+// f_int): a damped sphere stretched along z by springs at its poles, its trajectory fixed (so
+// that the tension does not pull it onto the axis), settles at the same equilibrium as with
+// Newmark.
+TEST(SwungModel, SemiImplicitStepperSettlesAtTheNewmarkEquilibrium) {
+  DNurbsSurfaceMaterial material;
+  material.damping_density = 2.0;
+  material.a10 = 1.0;
+  material.b20 = 0.02;
+  DNurbsSwungSurface model(swung_sphere(1.0), material);
+  model.fix_poles();
+  model.fix_trajectory();
+  EXPECT_EQ(model.semi_implicit_block_size(), 0);  // no node-by-node scalar matrices
+  const auto add_springs = [](System& system) {
+    for (const double pole : {-1.0, 1.0}) {
+      const Eigen::Vector3d target(0.0, 0.0, 1.5 * pole);
+      system.add_force(0, spring_force(
+                              Eigen::Vector2d((pole + 1.0) / 2.0, 0.0),
+                              [target](double) { return target; }, 5.0));
+    }
+  };
+  std::vector<System> systems(2, System(model));
+  for (System& system : systems) {
+    add_springs(system);
+  }
+  SemiImplicitStepper semi_implicit;
+  Integrator newmark;
+  for (int k = 0; k < 1500; ++k) {
+    semi_implicit.step(systems[0], 0.01);
+    newmark.step(systems[1], 0.01);
+  }
+  // Residual of the equilibrium f + f_int = 0 on the free coordinates, relative to |f|.
+  const auto residual = [&](const System& system) {
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(model.velocity_count());
+    const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model.velocity_count());
+    system.add_applied_forces(system.time(), system.coordinates(), rest, f);
+    const double applied = f.norm();
+    model.add_internal_force(system.coordinates(), f);
+    for (const int k : model.fixed_coordinates()) {
+      f[k] = 0.0;
+    }
+    return f.norm() / applied;
+  };
+  const Eigen::VectorXd a = systems[0].coordinates();
+  const Eigen::VectorXd b = systems[1].coordinates();
+  const double moved = (b - model.initial_coordinates()).norm();
+  std::cout << "stretched sphere after 15 s: equilibrium residual " << residual(systems[0])
+            << " (semi-implicit), " << residual(systems[1]) << " (Newmark); |q_semi - q_newmark| "
+            << (a - b).norm() << ", moved " << moved << "\n";
+  EXPECT_GT(moved, 0.1);  // it stretched (measured 1.86)
+  // Settled: what is left decays with the damping (measured 1.0e-7 and 3.2e-7).
+  EXPECT_LT(residual(systems[0]), 1e-6);
+  EXPECT_LT(residual(systems[1]), 1e-6);
+  EXPECT_LT((a - b).norm(), 1e-5 * moved);  // the same equilibrium (measured 1.5e-7)
 }
 
 }  // namespace
