@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/kronecker.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace dnurbs {
@@ -17,12 +16,10 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
                          const std::array<MaterialFunction, kQuantityCount>& stiffness,
                          const std::array<const char*, kQuantityCount>& stiffness_names,
                          const DNurbsSettings& settings)
-    : surface_(knots_v != nullptr),
-      mode_(settings.weight_mode),
-      per_control_point_(coordinates_per_control_point(settings.weight_mode)),
-      control_point_count_(static_cast<int>(control_points.rows())),
+    : RationalControlNetModel(settings.weight_mode, static_cast<int>(control_points.rows()),
+                              settings.minimum_weight),
+      surface_(knots_v != nullptr),
       count_v_(knots_v != nullptr ? knots_v->control_point_count() : 1),
-      minimum_weight_(settings.minimum_weight),
       knots_u_(knots_u) {
   validate(weights, settings);
   if (knots_v != nullptr) {
@@ -42,7 +39,8 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
   }
   build_material_table(mass_density, damping_density, stiffness, stiffness_names);
   build_pattern();
-  build_coordinates(control_points, weights, settings);
+  build_coordinates(control_points, weights, pattern_.scalar, settings.weight_inertia,
+                    settings.fix_weight_gauge);
 }
 
 void DNurbsModel::validate(const Eigen::VectorXd& weights, const DNurbsSettings& settings) const {
@@ -111,43 +109,6 @@ void DNurbsModel::build_pattern() {
     }
   }
   pattern_ = make_assembly_pattern(control_point_count_, nu * nv, element_nodes);
-}
-
-void DNurbsModel::build_coordinates(const Eigen::MatrixX3d& control_points,
-                                    const Eigen::VectorXd& weights,
-                                    const DNurbsSettings& settings) {
-  initial_coordinates_.resize(coordinate_count());
-  for (int i = 0; i < control_point_count_; ++i) {
-    initial_coordinates_.segment<3>(i * per_control_point_) = control_points.row(i).transpose();
-    if (mode_ == WeightMode::kFree) {
-      initial_coordinates_[i * 4 + 3] = weights[i];
-    }
-  }
-  if (mode_ == WeightMode::kFixed) {
-    // Fixed weights: the scalar matrices and their S (x) I_3 expansion, once
-    fixed_weights_ = weights;
-    assemble_scalar(scalar_);
-    expanded_.mass = kronecker_identity(scalar_.mass, 3);
-    expanded_.damping = kronecker_identity(scalar_.damping, 3);
-    expanded_.stiffness = kronecker_identity(scalar_.stiffness, 3);
-    return;
-  }
-  // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry
-  block_pattern_ = dense_block_pattern(pattern_.scalar, 4);
-  weight_inertia_ = settings.weight_inertia;
-  if (!(weight_inertia_ >= 0.0) || !std::isfinite(weight_inertia_)) {
-    throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
-  }
-  const auto* outer = pattern_.scalar.outerIndexPtr();
-  const auto* inner = pattern_.scalar.innerIndexPtr();
-  for (int i = 0; i < control_point_count_; ++i) {
-    const auto* found = std::lower_bound(inner + outer[i], inner + outer[i + 1], i);
-    weight_diagonal_.push_back(dense_block_value_index(
-        block_pattern_, pattern_.scalar, static_cast<int>(found - inner), i, 3, 3, 4));
-  }
-  if (settings.fix_weight_gauge) {
-    fix_weight(0);
-  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -225,152 +186,19 @@ int DNurbsModel::stiffness_order() const {
   return order;
 }
 
-Eigen::Vector3d DNurbsModel::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
+void DNurbsModel::visit_rational_point(
+    ConstVectorRef q, const Eigen::Vector2d& u, bool weight_columns,
+    const std::function<void(const RationalPoint&)>& visit) const {
+  static_assert(decltype(PointBasis::value)::RowsAtCompileTime == RationalPoint::kQuantityRows &&
+                decltype(RationalJacobian::rational)::RowsAtCompileTime ==
+                    RationalPoint::kQuantityRows);
   PointBasis basis;
   basis_at(u, basis);
   RationalJacobian jacobian;
-  rational_jacobian(basis, 0, control_net(q), false, jacobian);
-  return jacobian.point[0];
-}
-
-SparseMatrix DNurbsModel::position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const {
-  PointBasis basis;
-  basis_at(u, basis);
-  RationalJacobian jacobian;
-  const bool free = mode_ == WeightMode::kFree;
-  rational_jacobian(basis, 0, control_net(q), free, jacobian);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(basis.active_count * (free ? 6 : 3)));
-  for (int a = 0; a < basis.active_count; ++a) {
-    const int offset = basis.node[static_cast<size_t>(a)] * per_control_point_;
-    for (int r = 0; r < 3; ++r) {
-      triplets.emplace_back(r, offset + r, jacobian.rational(0, a));
-      if (free) {
-        triplets.emplace_back(r, offset + 3, jacobian.weight_column[0](r, a));
-      }
-    }
-  }
-  SparseMatrix L(3, velocity_count());
-  L.setFromTriplets(triplets.begin(), triplets.end());
-  return L;
-}
-
-Eigen::Vector3d DNurbsModel::jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
-                                                          const Eigen::Vector2d& u) const {
-  if (mode_ == WeightMode::kFixed) {
-    return Eigen::Vector3d::Zero();
-  }
-  PointBasis basis;
-  basis_at(u, basis);
-  RationalJacobian jacobian;
-  rational_jacobian(basis, 0, control_net(q), true, jacobian);
-  // xdd - J qdd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot), from A = x W with A the
-  // homogeneous point sum_a N_a w_a P_a.
-  double weight_rate = 0.0;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-  Eigen::Vector3d mixed = Eigen::Vector3d::Zero();
-  for (int a = 0; a < basis.active_count; ++a) {
-    const int offset = basis.node[static_cast<size_t>(a)] * 4;
-    const Eigen::Vector3d point_rate = qd.segment<3>(offset);
-    const double w_rate = qd[offset + 3];
-    weight_rate += basis.value(0, a) * w_rate;
-    velocity += jacobian.rational(0, a) * point_rate + jacobian.weight_column[0].col(a) * w_rate;
-    mixed += basis.value(0, a) * w_rate * point_rate;
-  }
-  return 2.0 / jacobian.weight_sum * (mixed - weight_rate * velocity);
-}
-
-void DNurbsModel::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u,
-                                  const Eigen::Vector3d& f, VectorRef force) const {
-  PointBasis basis;
-  basis_at(u, basis);
-  RationalJacobian jacobian;
-  const bool free = mode_ == WeightMode::kFree;
-  rational_jacobian(basis, 0, control_net(q), free, jacobian);
-  for (int a = 0; a < basis.active_count; ++a) {
-    const int offset = basis.node[static_cast<size_t>(a)] * per_control_point_;
-    force.segment<3>(offset) += jacobian.rational(0, a) * f;
-    if (free) {
-      force[offset + 3] += jacobian.weight_column[0].col(a).dot(f);
-    }
-  }
-}
-
-void DNurbsModel::project_state(Eigen::Ref<Eigen::VectorXd> q,
-                                Eigen::Ref<Eigen::VectorXd> qd) const {
-  if (mode_ == WeightMode::kFixed) {
-    return;
-  }
-  for (int i = 0; i < control_point_count_; ++i) {
-    double& w = q[4 * i + 3];
-    if (w < minimum_weight_) {
-      w = minimum_weight_;
-      qd[4 * i + 3] = std::max(qd[4 * i + 3], 0.0);
-    }
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Control points
-
-int DNurbsModel::control_point_offset(int i) const {
-  if (i < 0 || i >= control_point_count_) {
-    throw make_error("control point index ", i, " is outside 0..", control_point_count_ - 1);
-  }
-  return i * per_control_point_;
-}
-
-int DNurbsModel::weight_offset(int i) const {
-  if (mode_ != WeightMode::kFree) {
-    throw make_error("weight ", i, " is not a coordinate (weights are fixed)");
-  }
-  return control_point_offset(i) + 3;
-}
-
-void DNurbsModel::fix_control_point(int i) {
-  const int offset = control_point_offset(i);
-  for (int c = 0; c < 3; ++c) {
-    fix_coordinate(offset + c);
-  }
-}
-
-void DNurbsModel::fix_point(int i) {
-  if (i < 0 || i >= control_point_count_) {
-    throw make_error("control point ", i, " does not exist (the model has ", control_point_count_,
-                     ")");
-  }
-  fix_control_point(i);
-}
-
-void DNurbsModel::coordinate_lower_bounds(VectorRef lower) const {
-  if (mode_ != WeightMode::kFree) {
-    return;
-  }
-  for (int c = 0; c < control_point_count_; ++c) {
-    lower[weight_offset(c)] = minimum_weight_;
-  }
-}
-
-void DNurbsModel::fix_weight(int i) {
-  fix_coordinate(weight_offset(i));
-}
-
-Eigen::MatrixX3d DNurbsModel::control_points(ConstVectorRef q) const {
-  const ControlNet net = control_net(q);
-  Eigen::MatrixX3d points(control_point_count_, 3);
-  for (int i = 0; i < control_point_count_; ++i) {
-    points.row(i) = Eigen::Map<const Eigen::RowVector3d>(net.positions + i * per_control_point_);
-  }
-  return points;
-}
-
-Eigen::VectorXd DNurbsModel::weights(ConstVectorRef q) const {
-  const ControlNet net = control_net(q);
-  Eigen::VectorXd result(control_point_count_);
-  for (int i = 0; i < control_point_count_; ++i) {
-    result[i] = net.weights[i * net.weight_stride];
-  }
-  return result;
+  rational_jacobian(basis, 0, control_net(q), weight_columns, jacobian);
+  visit({basis.active_count, basis.node.data(), basis.value.data(), jacobian.rational.data(),
+         weight_columns ? jacobian.weight_column[0].data() : nullptr, jacobian.weight_sum,
+         jacobian.point[0]});
 }
 
 double DNurbsModel::parametric_measure() const {

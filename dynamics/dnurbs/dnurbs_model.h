@@ -14,8 +14,8 @@
 #include <Eigen/Core>
 
 #include "dynamics/core/material_function.h"
-#include "dynamics/core/model.h"
 #include "dynamics/core/quadrature_assembly.h"
+#include "dynamics/dnurbs/rational_control_net_model.h"
 #include "nurbs/jacobian.h"
 #include "nurbs/knot_vector.h"
 
@@ -55,22 +55,9 @@ struct DNurbsSettings {
 /// Material: `mass_density` mu and `damping_density` gamma per unit parametric measure, and the
 /// stiffness coefficients k_alpha of the quantities alpha = 1..5 (x_u, x_v, x_uu, x_uv, x_vv):
 ///   K = integral sum_alpha k_alpha J_alpha^T J_alpha     (Terzopoulos 2003, eqs. 1.26 and 1.20).
-class DNurbsModel : public Model {
+class DNurbsModel : public RationalControlNetModel {
  public:
-  int coordinate_count() const override { return control_point_count_ * per_control_point_; }
-  Eigen::VectorXd initial_coordinates() const override { return initial_coordinates_; }
   int parametric_dimension() const override { return surface_ ? 2 : 1; }
-
-  Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& u) const override;
-  SparseMatrix position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const override;
-  Eigen::Vector3d jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
-                                               const Eigen::Vector2d& u) const override;
-
-  bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
-  const ModelMatrices* constant_matrices() const override;
-  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const override;
-  int kronecker_block_size() const override { return mode_ == WeightMode::kFixed ? 3 : 0; }
-  const ModelMatrices* scalar_matrices() const override;
 
   void add_internal_force(ConstVectorRef q, VectorRef force) const override;
   /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 = (1/2) q^T K(q) q.
@@ -78,32 +65,9 @@ class DNurbsModel : public Model {
   /// g = -integral mu J^T Jdot qd with Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot)
   /// (free weights; zero for fixed weights).
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
-  void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
-                       VectorRef force) const override;
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
-  void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
-  int control_point_offset(int i) const override;
-  /// Free weights: every weight coordinate is bounded below by the minimum weight.
-  void coordinate_lower_bounds(VectorRef lower) const override;
-  /// fix_control_point(i), with an Error naming i if there is no such control point.
-  void fix_point(int i) override;
 
-  WeightMode weight_mode() const { return mode_; }
-  /// Number of distinct control points.
-  int control_point_count() const { return control_point_count_; }
-  double minimum_weight() const { return minimum_weight_; }
-  /// Velocity-space index of weight i (free weights only; throws Error otherwise).
-  int weight_offset(int i) const;
-  /// Fixes the position of control point i (its three position coordinates; a free weight
-  /// stays free).
-  void fix_control_point(int i);
-  /// Fixes free weight i (throws Error for fixed-weight models). With the default weight gauge
-  /// weight 0 is already fixed; fixing a second weight fixes a weight ratio, a shape constraint.
-  void fix_weight(int i);
-  /// Control points (count by 3) and weights (count) at coordinates q.
-  Eigen::MatrixX3d control_points(ConstVectorRef q) const;
-  Eigen::VectorXd weights(ConstVectorRef q) const;
   /// The parametric measure of the domain (length of a curve's, area of a surface's).
   double parametric_measure() const;
 
@@ -126,8 +90,6 @@ class DNurbsModel : public Model {
                             const std::array<MaterialFunction, kQuantityCount>& stiffness,
                             const std::array<const char*, kQuantityCount>& stiffness_names);
   void build_pattern();
-  void build_coordinates(const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights,
-                         const DNurbsSettings& settings);
   // The quadrature loop of every integral (Terzopoulos 2003, eq. 1.25): at each quadrature point of
   // each element, the basis and the rational Jacobian of derivative order `order` (with the weight
   // columns when `weight_columns`) at the control net, then
@@ -142,6 +104,8 @@ class DNurbsModel : public Model {
   // Basis at an arbitrary parameter / at quadrature point `point` of element `element`.
   void basis_at(const Eigen::Vector2d& u, PointBasis& basis) const;
   void basis_at_quadrature(int element, int point, PointBasis& basis) const;
+  void visit_rational_point(ConstVectorRef q, const Eigen::Vector2d& u, bool weight_columns,
+                            const std::function<void(const RationalPoint&)>& visit) const override;
   ControlNet control_net(ConstVectorRef q) const;
   int points_per_element() const { return table_u_.points_per_span * table_v_.points_per_span; }
   int element_count() const { return table_u_.span_count * table_v_.span_count; }
@@ -149,8 +113,8 @@ class DNurbsModel : public Model {
   double quadrature_weight(int element, int point) const;
   Eigen::Vector2d quadrature_parameter(int element, int point) const;
   // Assembly of the scalar (fixed weights) or block (free weights) matrices at q.
-  void assemble_scalar(ModelMatrices& scalar) const;
-  void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const;
+  void assemble_scalar(ModelMatrices& scalar) const override;
+  void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
   // Highest derivative order the stiffness needs (1 or 2; 0 without stiffness).
   int stiffness_order() const;
 
@@ -159,11 +123,7 @@ class DNurbsModel : public Model {
   static constexpr int kMaterialStride = 8;
 
   bool surface_ = false;
-  WeightMode mode_ = WeightMode::kFixed;
-  int per_control_point_ = 3;
-  int control_point_count_ = 0;
   int count_v_ = 1;  // control points along v (1 for curves)
-  double minimum_weight_ = 1e-3;
   bool has_damping_ = false;
   std::array<bool, kQuantityCount> has_stiffness_{};
   KnotVector knots_u_;
@@ -171,17 +131,7 @@ class DNurbsModel : public Model {
   DirectionQuadrature table_u_;
   DirectionQuadrature table_v_;
   std::vector<double> material_;
-  Eigen::VectorXd fixed_weights_;  // the weights when they are not coordinates
-  Eigen::VectorXd initial_coordinates_;
   AssemblyPattern pattern_;
-  // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once.
-  ModelMatrices scalar_;
-  ModelMatrices expanded_;
-  // Free weights: the 4 x 4 block pattern, sized once, and the value index of each weight's
-  // diagonal entry in it.
-  SparseMatrix block_pattern_;
-  std::vector<int> weight_diagonal_;
-  double weight_inertia_ = 0.0;
 };
 
 template <typename PointVisitor, typename ElementVisitor>

@@ -50,22 +50,6 @@ void add_free_terms(const RationalJacobian& jacobian, const std::array<double, k
 
 }  // namespace
 
-const ModelMatrices* DNurbsModel::constant_matrices() const {
-  return mode_ == WeightMode::kFixed ? &expanded_ : nullptr;
-}
-
-const ModelMatrices* DNurbsModel::scalar_matrices() const {
-  return mode_ == WeightMode::kFixed ? &scalar_ : nullptr;
-}
-
-void DNurbsModel::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {
-  if (mode_ == WeightMode::kFixed) {
-    matrices = expanded_;
-    return;
-  }
-  assemble_free(q, matrices);
-}
-
 void DNurbsModel::assemble_scalar(ModelMatrices& scalar) const {
   // Terzopoulos 2003, eqs. 1.25-1.26 with fixed weights: S_M = integral mu R_a R_b,
   // S_D = integral gamma R_a R_b, S_K = integral sum_alpha k_alpha R_a^alpha R_b^alpha.

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <utility>
 
 #include "core/error.h"
-#include "core/kronecker.h"
 #include "dynamics/triangular/triangular_free_weight_terms.h"
 
 namespace dnurbs {
@@ -27,23 +25,37 @@ struct ElementMatrices {
   std::vector<double> stiffness;
 };
 
+// The view of the rational basis that RationalControlNetModel works with.
+RationalPoint rational_point(const TriangularBasisValues& values,
+                             const TriangularRationalJacobian& jacobian, bool weight_columns) {
+  static_assert(decltype(TriangularBasisValues::value)::RowsAtCompileTime ==
+                    RationalPoint::kQuantityRows &&
+                decltype(TriangularRationalJacobian::rational)::RowsAtCompileTime ==
+                    RationalPoint::kQuantityRows);
+  return {values.count,
+          values.function.data(),
+          values.value.data(),
+          jacobian.rational.data(),
+          weight_columns ? jacobian.weight_column[0].data() : nullptr,
+          jacobian.weight_sum,
+          jacobian.point[0]};
+}
+
 }  // namespace
 
 TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& surface,
                                                  const DNurbsSurfaceMaterial& material,
                                                  const TriangularDNurbsSettings& settings)
-    : surface_(surface),
-      mode_(settings.weight_mode),
-      per_control_point_(coordinates_per_control_point(settings.weight_mode)),
-      count_(surface.control_point_count()),
-      minimum_weight_(settings.minimum_weight),
-      weight_inertia_(settings.weight_inertia) {
+    : RationalControlNetModel(settings.weight_mode, surface.control_point_count(),
+                              settings.minimum_weight),
+      surface_(surface) {
   // Validate the settings and the weights -------------------------------------------------
   if (!(minimum_weight_ > 0.0) || !std::isfinite(minimum_weight_)) {
     throw make_error("minimum weight ", minimum_weight_, " is not a positive finite number");
   }
-  if (!(weight_inertia_ >= 0.0) || !std::isfinite(weight_inertia_)) {
-    throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
+  if (!(settings.weight_inertia >= 0.0) || !std::isfinite(settings.weight_inertia)) {
+    throw make_error("weight inertia ", settings.weight_inertia,
+                     " is not a non-negative finite number");
   }
   if (settings.quadrature_degree < 0 || settings.quadrature_degree > kMaxDunavantDegree) {
     throw make_error("quadrature degree ", settings.quadrature_degree, " is outside 0..",
@@ -55,7 +67,7 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   }
   const Eigen::VectorXd& weights = surface.weights();
   if (mode_ == WeightMode::kFree) {
-    for (int i = 0; i < count_; ++i) {
+    for (int i = 0; i < control_point_count_; ++i) {
       if (weights[i] < minimum_weight_) {
         throw make_error("free weight ", i, " is ", weights[i], ", below the minimum weight ",
                          minimum_weight_);
@@ -98,29 +110,10 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   }
   pattern_ = quadrature_->assembly_pattern();
 
-  // Coordinates: q = [P_0, P_1, ...] or [P_0, w_0, P_1, w_1, ...] -----------------------------
-  Eigen::MatrixXd stacked(per_control_point_, count_);
-  stacked.topRows<3>() = surface.control_points().transpose();
-  if (mode_ == WeightMode::kFree) {
-    stacked.row(3) = weights.transpose();
-  }
-  initial_coordinates_ = stacked.reshaped();
-  if (mode_ == WeightMode::kFixed) {
-    // Constant matrices S and S (x) I_3, assembled once.
-    fixed_weights_ = weights;
-    assemble_scalar(scalar_);
-    for (auto [scalar, expanded] : {std::pair{&scalar_.mass, &expanded_.mass},
-                                    std::pair{&scalar_.damping, &expanded_.damping},
-                                    std::pair{&scalar_.stiffness, &expanded_.stiffness}}) {
-      *expanded = kronecker_identity(*scalar, 3);
-    }
-    return;
-  }
-  block_pattern_ = dense_block_pattern(pattern_.scalar, 4);
-  weight_diagonal_ = block_diagonal_value_indices(pattern_.scalar, block_pattern_, 4, 3);
-  if (settings.fix_weight_gauge) {
-    fix_weight(0);
-  }
+  // Coordinates: q = [P_0, P_1, ...] or [P_0, w_0, P_1, w_1, ...], the constant matrices of
+  // fixed weights or the block pattern of free ones ------------------------------------------
+  build_coordinates(surface.control_points(), weights, pattern_.scalar, settings.weight_inertia,
+                    settings.fix_weight_gauge);
 }
 
 std::unique_ptr<Model> TriangularDNurbsSurface::clone() const {
@@ -131,20 +124,10 @@ std::unique_ptr<Model> TriangularDNurbsSurface::clone() const {
 // Points and Jacobians
 
 TriangularControlNet TriangularDNurbsSurface::control_net(const ConstVectorRef& q) const {
-  if (q.size() != coordinate_count()) {
-    throw make_error("coordinate vector has ", q.size(), " entries, the model has ",
-                     coordinate_count());
-  }
+  check_coordinates(q);
   // Free weights sit after each point's position in q; fixed ones in their own vector.
   const bool free = mode_ == WeightMode::kFree;
   return {q.data(), per_control_point_, free ? q.data() + 3 : fixed_weights_.data(), free ? 4 : 1};
-}
-
-void TriangularDNurbsSurface::check_velocity(const ConstVectorRef& qd) const {
-  if (qd.size() != velocity_count()) {
-    throw make_error("velocity vector has ", qd.size(), " entries, the model has ",
-                     velocity_count());
-  }
 }
 
 int TriangularDNurbsSurface::stiffness_order() const {
@@ -186,68 +169,17 @@ void TriangularDNurbsSurface::jacobian_at(const Eigen::Vector2d& u, const Triang
   triangular_rational_jacobian(values, order, net, weight_columns, jacobian);
 }
 
-Eigen::Vector3d TriangularDNurbsSurface::position(ConstVectorRef q,
-                                                  const Eigen::Vector2d& u) const {
+void TriangularDNurbsSurface::visit_rational_point(
+    ConstVectorRef q, const Eigen::Vector2d& u, bool weight_columns,
+    const std::function<void(const RationalPoint&)>& visit) const {
   TriangularBasisValues values;
   TriangularRationalJacobian jacobian;
-  jacobian_at(u, control_net(q), 0, false, jacobian, values);
-  return jacobian.point[0];
-}
-
-SparseMatrix TriangularDNurbsSurface::position_jacobian(ConstVectorRef q,
-                                                        const Eigen::Vector2d& u) const {
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  const bool free = mode_ == WeightMode::kFree;
-  jacobian_at(u, control_net(q), 0, free, jacobian, values);
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int a = 0; a < values.count; ++a) {
-    if (values.value(0, a) == 0.0) {
-      continue;  // outside the B-spline's support: no coupling
-    }
-    const int offset = values.function[static_cast<size_t>(a)] * per_control_point_;
-    for (int r = 0; r < 3; ++r) {
-      triplets.emplace_back(r, offset + r, jacobian.rational(0, a));
-      if (free) {
-        triplets.emplace_back(r, offset + 3, jacobian.weight_column[0](r, a));
-      }
-    }
-  }
-  SparseMatrix jacobian_matrix(3, velocity_count());
-  jacobian_matrix.setFromTriplets(triplets.begin(), triplets.end());
-  return jacobian_matrix;
-}
-
-Eigen::Vector3d TriangularDNurbsSurface::jacobian_rate_times_velocity(
-    ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u) const {
-  if (mode_ == WeightMode::kFixed) {
-    return Eigen::Vector3d::Zero();
-  }
-  check_velocity(qd);
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  jacobian_at(u, control_net(q), 0, true, jacobian, values);
-  return free_weight_acceleration(values, jacobian, qd);
+  jacobian_at(u, control_net(q), 0, weight_columns, jacobian, values);
+  visit(rational_point(values, jacobian, weight_columns));
 }
 
 // ---------------------------------------------------------------------------------------------
 // Matrices
-
-const ModelMatrices* TriangularDNurbsSurface::constant_matrices() const {
-  return mode_ == WeightMode::kFixed ? &expanded_ : nullptr;
-}
-
-const ModelMatrices* TriangularDNurbsSurface::scalar_matrices() const {
-  return mode_ == WeightMode::kFixed ? &scalar_ : nullptr;
-}
-
-void TriangularDNurbsSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {
-  if (mode_ == WeightMode::kFixed) {
-    matrices = expanded_;
-    return;
-  }
-  assemble_free(q, matrices);
-}
 
 void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
   // Qin & Terzopoulos 1997, section 4, with fixed weights: S_M = integral mu R_a R_b,
@@ -257,7 +189,8 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
   ElementMatrices element(static_cast<size_t>(local) * static_cast<size_t>(local));
   scalar.mass = pattern_.scalar;
   scalar.stiffness = pattern_.scalar;
-  scalar.damping = has_damping_ ? pattern_.scalar : SparseMatrix(count_, count_);
+  scalar.damping =
+      has_damping_ ? pattern_.scalar : SparseMatrix(control_point_count_, control_point_count_);
   const TriangularControlNet net = control_net(initial_coordinates_);
   for (int e = 0; e < quadrature_->element_count(); ++e) {
     element.clear();
@@ -303,8 +236,7 @@ void TriangularDNurbsSurface::assemble_scalar(ModelMatrices& scalar) const {
   }
 }
 
-void TriangularDNurbsSurface::assemble_free(const ConstVectorRef& q,
-                                            ModelMatrices& matrices) const {
+void TriangularDNurbsSurface::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const {
   // Free weights: 4 x 4 blocks [[R_a R_b I_3, R_a E_b], [E_a^T R_b, E_a . E_b]] per quantity.
   const int local = pattern_.local_count;
   ElementMatrices element(16 * static_cast<size_t>(local) * static_cast<size_t>(local));
@@ -408,18 +340,10 @@ void TriangularDNurbsSurface::add_inertial_force(ConstVectorRef q, ConstVectorRe
                  [&](int p, const TriangularBasisValues& values,
                      const TriangularRationalJacobian& jacobian, const std::vector<int>&) {
                    const double mu = material_at(p)[0] * quadrature_->weight(p);
-                   const Eigen::Vector3d h = mu * free_weight_acceleration(values, jacobian, qd);
+                   const Eigen::Vector3d h =
+                       mu * free_weight_acceleration(rational_point(values, jacobian, true), qd);
                    add_transposed_jacobian_times(values, jacobian, 0, true, -h, force);
                  });
-}
-
-void TriangularDNurbsSurface::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u,
-                                              const Eigen::Vector3d& f, VectorRef force) const {
-  TriangularBasisValues values;
-  TriangularRationalJacobian jacobian;
-  const bool free = mode_ == WeightMode::kFree;
-  jacobian_at(u, control_net(q), 0, free, jacobian, values);
-  add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
 }
 
 void TriangularDNurbsSurface::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
@@ -440,68 +364,7 @@ void TriangularDNurbsSurface::add_distributed_force(ConstVectorRef q, const Forc
                  });
 }
 
-void TriangularDNurbsSurface::project_state(Eigen::Ref<Eigen::VectorXd> q,
-                                            Eigen::Ref<Eigen::VectorXd> qd) const {
-  if (mode_ == WeightMode::kFixed) {
-    return;
-  }
-  for (int i = 0; i < count_; ++i) {
-    double& w = q[4 * i + 3];
-    if (w < minimum_weight_) {
-      w = minimum_weight_;
-      qd[4 * i + 3] = std::max(qd[4 * i + 3], 0.0);
-    }
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Control points
-
-int TriangularDNurbsSurface::control_point_offset(int i) const {
-  if (i < 0 || i >= count_) {
-    throw make_error("control point index ", i, " is outside 0..", count_ - 1);
-  }
-  return i * per_control_point_;
-}
-
-int TriangularDNurbsSurface::weight_offset(int i) const {
-  if (mode_ != WeightMode::kFree) {
-    throw make_error("weight ", i, " is not a coordinate (weights are fixed)");
-  }
-  return control_point_offset(i) + 3;
-}
-
-void TriangularDNurbsSurface::fix_control_point(int i) {
-  const int offset = control_point_offset(i);
-  for (int c = 0; c < 3; ++c) {
-    fix_coordinate(offset + c);
-  }
-}
-
-void TriangularDNurbsSurface::fix_weight(int i) {
-  fix_coordinate(weight_offset(i));
-}
-
-Eigen::MatrixX3d TriangularDNurbsSurface::control_points(const ConstVectorRef& q) const {
-  const TriangularControlNet net = control_net(q);
-  Eigen::MatrixX3d points(count_, 3);
-  for (int i = 0; i < count_; ++i) {
-    points.row(i) = Eigen::Map<const Eigen::RowVector3d>(
-        net.positions + static_cast<std::ptrdiff_t>(i) * per_control_point_);
-  }
-  return points;
-}
-
-Eigen::VectorXd TriangularDNurbsSurface::weights(const ConstVectorRef& q) const {
-  const TriangularControlNet net = control_net(q);
-  Eigen::VectorXd result(count_);
-  for (int i = 0; i < count_; ++i) {
-    result[i] = net.weights[static_cast<std::ptrdiff_t>(i) * net.weight_stride];
-  }
-  return result;
-}
-
-TriangularNurbsSurface TriangularDNurbsSurface::surface(const ConstVectorRef& q) const {
+TriangularNurbsSurface TriangularDNurbsSurface::surface(ConstVectorRef q) const {
   return {surface_.shared_basis(), control_points(q), weights(q)};
 }
 

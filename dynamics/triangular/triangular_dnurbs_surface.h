@@ -30,9 +30,9 @@
 #include <memory>
 #include <vector>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/core/model.h"
 #include "dynamics/core/quadrature_assembly.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dynamics/dnurbs/rational_control_net_model.h"
 #include "dynamics/triangular/triangular_quadrature.h"
 #include "nurbs/jacobian.h"
 #include "nurbs/triangular_nurbs_surface.h"
@@ -61,7 +61,7 @@ struct TriangularDNurbsSettings {
 /// A triangular D-NURBS surface as a Model. Control point a belongs to B-spline a of the basis
 /// (TriangularBSplineBasis numbering). The material (per unit parametric area) is that of the
 /// tensor-product D-NURBS surface.
-class TriangularDNurbsSurface : public Model {
+class TriangularDNurbsSurface : public RationalControlNetModel {
  public:
   /// Throws Error naming the value for bad material values, weights or settings.
   explicit TriangularDNurbsSurface(const TriangularNurbsSurface& surface,
@@ -69,46 +69,22 @@ class TriangularDNurbsSurface : public Model {
                                    const TriangularDNurbsSettings& settings = {});
 
   std::unique_ptr<Model> clone() const override;
-  int coordinate_count() const override { return count_ * per_control_point_; }
-  Eigen::VectorXd initial_coordinates() const override { return initial_coordinates_; }
   int parametric_dimension() const override { return 2; }
 
-  Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& u) const override;
-  SparseMatrix position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const override;
-  /// (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot) (free weights; zero for fixed weights).
-  Eigen::Vector3d jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
-                                               const Eigen::Vector2d& u) const override;
-
-  bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
-  const ModelMatrices* constant_matrices() const override;
-  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const override;
-  int kronecker_block_size() const override { return mode_ == WeightMode::kFixed ? 3 : 0; }
-  const ModelMatrices* scalar_matrices() const override;
-
+  /// Fixed weights: -K q with the constant K; free weights: -integral sum_alpha k_alpha
+  /// J_alpha^T x^alpha by the Dunavant rule on every polynomial cell.
   void add_internal_force(ConstVectorRef q, VectorRef force) const override;
-  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2.
+  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 over the triangulated domain.
   double potential_energy(ConstVectorRef q) const override;
   /// g = -integral mu J^T Jdot qd (free weights; nothing for fixed weights).
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
-  void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
-                       VectorRef force) const override;
+  /// integral J^T f(u) over the triangulated domain, f per unit parametric area, by the
+  /// model's quadrature (the sample's tangents are x_u and x_v).
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
-  void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
-  int control_point_offset(int i) const override;
 
-  WeightMode weight_mode() const { return mode_; }
-  int control_point_count() const { return count_; }
-  double minimum_weight() const { return minimum_weight_; }
-  /// Velocity-space index of weight i (free weights only; throws Error otherwise).
-  int weight_offset(int i) const;
-  void fix_control_point(int i);
-  void fix_weight(int i);
-  /// Control points (count by 3) and weights (count) at q.
-  Eigen::MatrixX3d control_points(const ConstVectorRef& q) const;
-  Eigen::VectorXd weights(const ConstVectorRef& q) const;
   /// The triangular NURBS surface at q.
-  TriangularNurbsSurface surface(const ConstVectorRef& q) const;
+  TriangularNurbsSurface surface(ConstVectorRef q) const;
   const TriangularNurbsSurface& initial_surface() const { return surface_; }
   const TriangularQuadrature& quadrature() const { return *quadrature_; }
   /// Area of the parametric domain.
@@ -120,7 +96,6 @@ class TriangularDNurbsSurface : public Model {
   static constexpr int kMaterialStride = 7;
 
   TriangularControlNet control_net(const ConstVectorRef& q) const;
-  void check_velocity(const ConstVectorRef& qd) const;
   const double* material_at(int p) const {
     return &material_[static_cast<size_t>(p) * kMaterialStride];
   }
@@ -133,32 +108,23 @@ class TriangularDNurbsSurface : public Model {
   template <typename Visit>
   void for_each_point(const TriangularControlNet& net, int order, bool weight_columns,
                       Visit&& visit) const;
+  // The rational basis at u (the B-splines listed for the domain triangle containing u; throws
+  // Error for u outside the triangulated domain).
+  void visit_rational_point(ConstVectorRef q, const Eigen::Vector2d& u, bool weight_columns,
+                            const std::function<void(const RationalPoint&)>& visit) const override;
   // The B-splines and the rational Jacobian at an arbitrary parameter.
   void jacobian_at(const Eigen::Vector2d& u, const TriangularControlNet& net, int order,
                    bool weight_columns, TriangularRationalJacobian& jacobian,
                    TriangularBasisValues& values) const;
-  void assemble_scalar(ModelMatrices& scalar) const;
-  void assemble_free(const ConstVectorRef& q, ModelMatrices& matrices) const;
+  void assemble_scalar(ModelMatrices& scalar) const override;
+  void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
 
   TriangularNurbsSurface surface_;
   std::shared_ptr<const TriangularQuadrature> quadrature_;  // immutable, shared by clones
-  WeightMode mode_ = WeightMode::kFixed;
-  int per_control_point_ = 3;
-  int count_ = 0;
-  double minimum_weight_ = 1e-3;
-  double weight_inertia_ = 0.0;
   bool has_damping_ = false;
   std::array<bool, 6> has_stiffness_{};
   std::vector<double> material_;
-  Eigen::VectorXd fixed_weights_;
-  Eigen::VectorXd initial_coordinates_;
   AssemblyPattern pattern_;
-  // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once.
-  ModelMatrices scalar_;
-  ModelMatrices expanded_;
-  // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry.
-  SparseMatrix block_pattern_;
-  std::vector<int> weight_diagonal_;
 };
 
 }  // namespace dnurbs

@@ -17,23 +17,6 @@ void add_transposed_jacobian_times(const TriangularBasisValues& basis,
   }
 }
 
-Eigen::Vector3d free_weight_acceleration(const TriangularBasisValues& basis,
-                                         const TriangularRationalJacobian& jacobian,
-                                         ConstVectorRef qd) {
-  double weight_rate = 0.0;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-  Eigen::Vector3d mixed = Eigen::Vector3d::Zero();
-  for (int a = 0; a < basis.count; ++a) {
-    const int offset = basis.function[static_cast<size_t>(a)] * 4;
-    const Eigen::Vector3d point_rate = qd.segment<3>(offset);
-    const double w_rate = qd[offset + 3];
-    weight_rate += basis.value(0, a) * w_rate;
-    velocity += jacobian.rational(0, a) * point_rate + jacobian.weight_column[0].col(a) * w_rate;
-    mixed += basis.value(0, a) * w_rate * point_rate;
-  }
-  return 2.0 / jacobian.weight_sum * (mixed - weight_rate * velocity);
-}
-
 void add_free_weight_terms(const TriangularRationalJacobian& jacobian,
                            const std::array<double, 6>& coefficient, int count,
                            const std::vector<int>& local, int local_count,
@@ -99,22 +82,6 @@ void reset_to_pattern(const SparseMatrix& pattern, bool used, SparseMatrix& matr
   } else {
     matrix = pattern;
   }
-}
-
-std::vector<int> block_diagonal_value_indices(const SparseMatrix& scalar,
-                                              const SparseMatrix& blocked, int block_size,
-                                              int component) {
-  std::vector<int> indices;
-  indices.reserve(static_cast<size_t>(scalar.cols()));
-  const auto* outer = scalar.outerIndexPtr();
-  const auto* inner = scalar.innerIndexPtr();
-  for (int i = 0; i < scalar.cols(); ++i) {
-    // The scalar diagonal entry of column i, then its (component, component) entry.
-    const auto* diagonal = std::lower_bound(inner + outer[i], inner + outer[i + 1], i);
-    indices.push_back(dense_block_value_index(blocked, scalar, static_cast<int>(diagonal - inner),
-                                              i, component, component, block_size));
-  }
-  return indices;
 }
 
 }  // namespace dnurbs

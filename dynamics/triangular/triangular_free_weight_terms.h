@@ -1,9 +1,10 @@
 #pragma once
 // Building blocks of the triangular D-NURBS model (triangular_dnurbs_surface.h) that work on
 // the rational Jacobian of one point (Qin & Terzopoulos, "Triangular NURBS and their dynamic
-// generalizations", Computer Aided Geometric Design 14, 1997, section 4): J^T f, the velocity
-// product Jdot qd of free weights, and the 4 x 4 control-point-and-weight blocks of
-// sum_alpha c_alpha J_alpha^T J_alpha with their scatter into a pre-sized block pattern.
+// generalizations", Computer Aided Geometric Design 14, 1997, section 4): J^T f and the 4 x 4
+// control-point-and-weight blocks of sum_alpha c_alpha J_alpha^T J_alpha with their scatter
+// into a pre-sized block pattern. The velocity product Jdot qd of free weights is
+// free_weight_acceleration (dynamics/dnurbs/rational_control_net_model.h).
 
 #include <array>
 #include <vector>
@@ -20,12 +21,6 @@ namespace dnurbs {
 void add_transposed_jacobian_times(const TriangularBasisValues& basis,
                                    const TriangularRationalJacobian& jacobian, int alpha,
                                    bool free_weights, const Eigen::Vector3d& f, VectorRef force);
-
-/// Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot) for free weights (qd = [Pdot_0,
-/// wdot_0, ...]): from A = x W with the homogeneous point A = sum_a N_a w_a P_a.
-Eigen::Vector3d free_weight_acceleration(const TriangularBasisValues& basis,
-                                         const TriangularRationalJacobian& jacobian,
-                                         ConstVectorRef qd);
 
 /// Adds sum_alpha c_alpha J_alpha^T J_alpha of one point into an element block matrix laid out
 /// in 4 x 4 blocks: block[(4 la + r) * 4 L + 4 lb + s] for the local B-splines la, lb
@@ -46,11 +41,5 @@ void scatter_free_weight_block(const AssemblyPattern& pattern, const SparseMatri
 /// zero values (its storage reused when it already has that structure), or an empty matrix of
 /// the same size if `used` is false.
 void reset_to_pattern(const SparseMatrix& pattern, bool used, SparseMatrix& matrix);
-
-/// For every node i, the value index in `blocked` (dense_block_pattern(scalar, block_size)) of
-/// the diagonal entry (block_size i + component, block_size i + component).
-std::vector<int> block_diagonal_value_indices(const SparseMatrix& scalar,
-                                              const SparseMatrix& blocked, int block_size,
-                                              int component);
 
 }  // namespace dnurbs

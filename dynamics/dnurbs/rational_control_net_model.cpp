@@ -1,0 +1,243 @@
+#include "dynamics/dnurbs/rational_control_net_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/kronecker.h"
+#include "dynamics/core/quadrature_assembly.h"
+
+namespace dnurbs {
+
+RationalControlNetModel::RationalControlNetModel(WeightMode mode, int control_point_count,
+                                                 double minimum_weight)
+    : mode_(mode),
+      per_control_point_(coordinates_per_control_point(mode)),
+      control_point_count_(control_point_count),
+      minimum_weight_(minimum_weight) {}
+
+void RationalControlNetModel::build_coordinates(const Eigen::MatrixX3d& control_points,
+                                                const Eigen::VectorXd& weights,
+                                                const SparseMatrix& scalar_pattern,
+                                                double weight_inertia, bool fix_weight_gauge) {
+  initial_coordinates_.resize(coordinate_count());
+  for (int i = 0; i < control_point_count_; ++i) {
+    initial_coordinates_.segment<3>(i * per_control_point_) = control_points.row(i).transpose();
+    if (mode_ == WeightMode::kFree) {
+      initial_coordinates_[i * 4 + 3] = weights[i];
+    }
+  }
+  if (mode_ == WeightMode::kFixed) {
+    // Fixed weights: the scalar matrices and their S (x) I_3 expansion, once
+    fixed_weights_ = weights;
+    assemble_scalar(scalar_);
+    expanded_.mass = kronecker_identity(scalar_.mass, 3);
+    expanded_.damping = kronecker_identity(scalar_.damping, 3);
+    expanded_.stiffness = kronecker_identity(scalar_.stiffness, 3);
+    return;
+  }
+  // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry
+  block_pattern_ = dense_block_pattern(scalar_pattern, 4);
+  weight_inertia_ = weight_inertia;
+  if (!(weight_inertia_ >= 0.0) || !std::isfinite(weight_inertia_)) {
+    throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
+  }
+  const auto* outer = scalar_pattern.outerIndexPtr();
+  const auto* inner = scalar_pattern.innerIndexPtr();
+  for (int i = 0; i < control_point_count_; ++i) {
+    const auto* found = std::lower_bound(inner + outer[i], inner + outer[i + 1], i);
+    weight_diagonal_.push_back(dense_block_value_index(
+        block_pattern_, scalar_pattern, static_cast<int>(found - inner), i, 3, 3, 4));
+  }
+  if (fix_weight_gauge) {
+    fix_weight(0);
+  }
+}
+
+void RationalControlNetModel::check_coordinates(ConstVectorRef q) const {
+  if (q.size() != coordinate_count()) {
+    throw make_error("coordinate vector has ", q.size(), " entries, the model has ",
+                     coordinate_count());
+  }
+}
+
+void RationalControlNetModel::check_velocity(ConstVectorRef qd) const {
+  if (qd.size() != velocity_count()) {
+    throw make_error("velocity vector has ", qd.size(), " entries, the model has ",
+                     velocity_count());
+  }
+}
+
+Eigen::Vector3d free_weight_acceleration(const RationalPoint& point, ConstVectorRef qd) {
+  double weight_rate = 0.0;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d mixed = Eigen::Vector3d::Zero();
+  for (int a = 0; a < point.count; ++a) {
+    const int offset = point.control_point[a] * 4;
+    const Eigen::Vector3d point_rate = qd.segment<3>(offset);
+    const double w_rate = qd[offset + 3];
+    weight_rate += point.value(a) * w_rate;
+    velocity += point.rational_value(a) * point_rate + point.weight_column_of(a) * w_rate;
+    mixed += point.value(a) * w_rate * point_rate;
+  }
+  return 2.0 / point.weight_sum * (mixed - weight_rate * velocity);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Point kinematics and point forces (Terzopoulos 2003, eqs. 1.22-1.23: x = J q with the rational
+// basis as J, and f_q = J^T f)
+
+Eigen::Vector3d RationalControlNetModel::position(ConstVectorRef q,
+                                                  const Eigen::Vector2d& u) const {
+  Eigen::Vector3d x;
+  visit_rational_point(q, u, false, [&](const RationalPoint& point) { x = point.point; });
+  return x;
+}
+
+SparseMatrix RationalControlNetModel::position_jacobian(ConstVectorRef q,
+                                                        const Eigen::Vector2d& u) const {
+  const bool free = mode_ == WeightMode::kFree;
+  std::vector<Eigen::Triplet<double>> triplets;
+  visit_rational_point(q, u, free, [&](const RationalPoint& point) {
+    triplets.reserve(static_cast<size_t>(point.count * (free ? 6 : 3)));
+    for (int a = 0; a < point.count; ++a) {
+      const int offset = point.control_point[a] * per_control_point_;
+      for (int r = 0; r < 3; ++r) {
+        triplets.emplace_back(r, offset + r, point.rational_value(a));
+        if (free) {
+          triplets.emplace_back(r, offset + 3, point.weight_column_of(a)[r]);
+        }
+      }
+    }
+  });
+  SparseMatrix L(3, velocity_count());
+  L.setFromTriplets(triplets.begin(), triplets.end());
+  return L;
+}
+
+Eigen::Vector3d RationalControlNetModel::jacobian_rate_times_velocity(
+    ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u) const {
+  if (mode_ == WeightMode::kFixed) {
+    return Eigen::Vector3d::Zero();
+  }
+  check_velocity(qd);
+  Eigen::Vector3d rate;
+  visit_rational_point(
+      q, u, true, [&](const RationalPoint& point) { rate = free_weight_acceleration(point, qd); });
+  return rate;
+}
+
+void RationalControlNetModel::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u,
+                                              const Eigen::Vector3d& f, VectorRef force) const {
+  const bool free = mode_ == WeightMode::kFree;
+  visit_rational_point(q, u, free, [&](const RationalPoint& point) {
+    for (int a = 0; a < point.count; ++a) {
+      const int offset = point.control_point[a] * per_control_point_;
+      force.segment<3>(offset) += point.rational_value(a) * f;
+      if (free) {
+        force[offset + 3] += point.weight_column_of(a).dot(f);
+      }
+    }
+  });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Matrices
+
+const ModelMatrices* RationalControlNetModel::constant_matrices() const {
+  return mode_ == WeightMode::kFixed ? &expanded_ : nullptr;
+}
+
+const ModelMatrices* RationalControlNetModel::scalar_matrices() const {
+  return mode_ == WeightMode::kFixed ? &scalar_ : nullptr;
+}
+
+void RationalControlNetModel::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {
+  if (mode_ == WeightMode::kFixed) {
+    matrices = expanded_;
+    return;
+  }
+  assemble_free(q, matrices);
+}
+
+void RationalControlNetModel::project_state(Eigen::Ref<Eigen::VectorXd> q,
+                                            Eigen::Ref<Eigen::VectorXd> qd) const {
+  if (mode_ == WeightMode::kFixed) {
+    return;
+  }
+  for (int i = 0; i < control_point_count_; ++i) {
+    double& w = q[4 * i + 3];
+    if (w < minimum_weight_) {
+      w = minimum_weight_;
+      qd[4 * i + 3] = std::max(qd[4 * i + 3], 0.0);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Control points
+
+int RationalControlNetModel::control_point_offset(int i) const {
+  if (i < 0 || i >= control_point_count_) {
+    throw make_error("control point index ", i, " is outside 0..", control_point_count_ - 1);
+  }
+  return i * per_control_point_;
+}
+
+int RationalControlNetModel::weight_offset(int i) const {
+  if (mode_ != WeightMode::kFree) {
+    throw make_error("weight ", i, " is not a coordinate (weights are fixed)");
+  }
+  return control_point_offset(i) + 3;
+}
+
+void RationalControlNetModel::fix_control_point(int i) {
+  const int offset = control_point_offset(i);
+  for (int c = 0; c < 3; ++c) {
+    fix_coordinate(offset + c);
+  }
+}
+
+void RationalControlNetModel::fix_point(int i) {
+  if (i < 0 || i >= control_point_count_) {
+    throw make_error("control point ", i, " does not exist (the model has ", control_point_count_,
+                     ")");
+  }
+  fix_control_point(i);
+}
+
+void RationalControlNetModel::coordinate_lower_bounds(VectorRef lower) const {
+  if (mode_ != WeightMode::kFree) {
+    return;
+  }
+  for (int c = 0; c < control_point_count_; ++c) {
+    lower[weight_offset(c)] = minimum_weight_;
+  }
+}
+
+void RationalControlNetModel::fix_weight(int i) {
+  fix_coordinate(weight_offset(i));
+}
+
+Eigen::MatrixX3d RationalControlNetModel::control_points(ConstVectorRef q) const {
+  check_coordinates(q);
+  Eigen::MatrixX3d points(control_point_count_, 3);
+  for (int i = 0; i < control_point_count_; ++i) {
+    points.row(i) = q.segment<3>(i * per_control_point_).transpose();
+  }
+  return points;
+}
+
+Eigen::VectorXd RationalControlNetModel::weights(ConstVectorRef q) const {
+  check_coordinates(q);
+  if (mode_ == WeightMode::kFixed) {
+    return fixed_weights_;
+  }
+  Eigen::VectorXd result(control_point_count_);
+  for (int i = 0; i < control_point_count_; ++i) {
+    result[i] = q[4 * i + 3];
+  }
+  return result;
+}
+
+}  // namespace dnurbs

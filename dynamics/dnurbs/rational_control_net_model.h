@@ -1,0 +1,156 @@
+#pragma once
+// What every rational control-net model (the tensor-product D-NURBS curves and surfaces,
+// dnurbs_model.h, and the triangular D-NURBS surfaces, dynamics/triangular) does with its
+// generalized coordinates (Qin & Terzopoulos, "D-NURBS: a physics-based framework for geometric
+// design", IEEE TVCG 2(1) 1996, section 3; Terzopoulos, "Deformable Models: Classic,
+// Topology-Adaptive and Generalized Formulations", eqs. 1.21-1.24):
+//
+//   fixed weights: q = [P_0, P_1, ...] (3 per control point), J does not depend on q and
+//     M = S_M (x) I_3, D = S_D (x) I_3, K = S_K (x) I_3 with scalar matrices assembled once;
+//   free weights:  q = [P_0, w_0, P_1, w_1, ...] (4 per control point), M, D, K re-assembled at
+//     every state into a 4 x 4 block pattern sized once, every weight bounded below by the
+//     minimum weight, weight 0 fixed as the gauge, an optional constant weight inertia.
+//
+// The derived model supplies its basis and quadrature: the rational basis at a parameter
+// (visit_rational_point), the scalar matrices (fixed weights) and the block matrices at q (free
+// weights); the point kinematics and point forces follow here from the rational basis.
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynamics/core/model.h"
+#include "nurbs/jacobian.h"
+
+namespace dnurbs {
+
+/// The rational basis of a control-net model at one parameter u, a view into the model's own
+/// evaluation (valid during the visit only). Listed B-spline a (0 <= a < count) belongs to
+/// control point control_point[a]; the arrays hold quantity 0 (the point) of matrices with
+/// kQuantityRows rows stored column by column (Eigen's default), as both basis evaluations give.
+struct RationalPoint {
+  static constexpr int kQuantityRows = 6;  // x, x_u, x_v, x_uu, x_uv, x_vv
+  int count = 0;
+  const int* control_point = nullptr;
+  const double* basis = nullptr;          ///< N_a at basis[kQuantityRows a]
+  const double* rational = nullptr;       ///< R_a = w_a N_a / W at rational[kQuantityRows a]
+  const double* weight_column = nullptr;  ///< E_a = dx/dw_a at [3 a, 3 a + 3); null if unused
+  double weight_sum = 0.0;                ///< W = sum_a w_a N_a
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< x(u)
+
+  double value(int a) const { return basis[kQuantityRows * a]; }
+  double rational_value(int a) const { return rational[kQuantityRows * a]; }
+  Eigen::Map<const Eigen::Vector3d> weight_column_of(int a) const {
+    return Eigen::Map<const Eigen::Vector3d>(weight_column + 3 * a);
+  }
+};
+
+/// The coordinates, boundary conditions and constant-matrix caches of a rational control-net
+/// model (see the file comment). Control point i owns the velocity-space coordinates
+/// [i b, i b + 3) for its position and, with free weights, i b + 3 for its weight (b = 3 or 4).
+class RationalControlNetModel : public Model {
+ public:
+  int coordinate_count() const override { return control_point_count_ * per_control_point_; }
+  Eigen::VectorXd initial_coordinates() const override { return initial_coordinates_; }
+
+  /// x(u) = sum_a R_a(u) P_a.
+  Eigen::Vector3d position(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  /// L(u) = dx/dq, 3 by velocity_count(): R_a(u) I_3 on control point a's position and, with
+  /// free weights, E_a(u) on its weight, for every listed B-spline.
+  SparseMatrix position_jacobian(ConstVectorRef q, const Eigen::Vector2d& u) const override;
+  /// Free weights: free_weight_acceleration at u; fixed weights: zero (L is constant).
+  Eigen::Vector3d jacobian_rate_times_velocity(ConstVectorRef q, ConstVectorRef qd,
+                                               const Eigen::Vector2d& u) const override;
+  /// L(u)^T f.
+  void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
+                       VectorRef force) const override;
+
+  bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
+  /// Fixed weights: S (x) I_3 (built once); free weights: nullptr.
+  const ModelMatrices* constant_matrices() const override;
+  /// Fixed weights: a copy of constant_matrices(); free weights: the block matrices at q.
+  void assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const override;
+  int kronecker_block_size() const override { return mode_ == WeightMode::kFixed ? 3 : 0; }
+  /// Fixed weights: S_M, S_D, S_K (control points by control points); free weights: nullptr.
+  const ModelMatrices* scalar_matrices() const override;
+  /// Free weights: w_i = max(w_i, minimum weight) and, where a weight was clamped,
+  /// wdot_i = max(wdot_i, 0) (an inelastic contact with the bound). Fixed weights: nothing.
+  void project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd) const override;
+  /// i b; throws Error naming i if there is no such control point.
+  int control_point_offset(int i) const override;
+  /// Free weights: every weight coordinate is bounded below by the minimum weight.
+  void coordinate_lower_bounds(VectorRef lower) const override;
+  /// fix_control_point(i), with an Error naming i if there is no such control point.
+  void fix_point(int i) override;
+
+  WeightMode weight_mode() const { return mode_; }
+  /// Number of distinct control points.
+  int control_point_count() const { return control_point_count_; }
+  double minimum_weight() const { return minimum_weight_; }
+  /// Velocity-space index of weight i (free weights only; throws Error otherwise).
+  int weight_offset(int i) const;
+  /// Fixes the position of control point i (its three position coordinates; a free weight
+  /// stays free).
+  void fix_control_point(int i);
+  /// Fixes free weight i (throws Error for fixed-weight models). With the default weight gauge
+  /// weight 0 is already fixed; fixing a second weight fixes a weight ratio, a shape constraint.
+  void fix_weight(int i);
+  /// Control points (#control points by 3) and weights (#control points) at coordinates q
+  /// (size coordinate_count(); throws Error otherwise). Fixed weights: the weights the model
+  /// was built with.
+  Eigen::MatrixX3d control_points(ConstVectorRef q) const;
+  Eigen::VectorXd weights(ConstVectorRef q) const;
+
+ protected:
+  /// Throws nothing: the derived model validates its weights and settings.
+  RationalControlNetModel(WeightMode mode, int control_point_count, double minimum_weight);
+
+  /// The initial coordinates from control points (#control points by 3) and weights
+  /// (#control points), then fixed weights: the scalar matrices (assemble_scalar) and their
+  /// S (x) I_3 expansion; free weights: the 4 x 4 block pattern of `scalar_pattern` (the
+  /// control-point coupling pattern, #control points square), the weight inertia (throws
+  /// Error unless finite and >= 0) and, with `fix_weight_gauge`, weight 0 fixed.
+  void build_coordinates(const Eigen::MatrixX3d& control_points, const Eigen::VectorXd& weights,
+                         const SparseMatrix& scalar_pattern, double weight_inertia,
+                         bool fix_weight_gauge);
+  /// Throws Error unless q has coordinate_count() entries (velocity_count() for qd).
+  void check_coordinates(ConstVectorRef q) const;
+  void check_velocity(ConstVectorRef qd) const;
+
+  // The state every rational control-net model shares, set at construction and constant after.
+  WeightMode mode_ = WeightMode::kFixed;
+  int per_control_point_ = 3;  // b: 3 (fixed weights) or 4 (free weights)
+  int control_point_count_ = 0;
+  double minimum_weight_ = 1e-3;
+  double weight_inertia_ = 0.0;    // free weights: added to every weight's diagonal entry of M
+  Eigen::VectorXd fixed_weights_;  // the weights when they are not coordinates
+  Eigen::VectorXd initial_coordinates_;
+  // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once by
+  // build_coordinates (they depend on the knots, the fixed weights and the material only).
+  ModelMatrices scalar_;
+  ModelMatrices expanded_;
+  // Free weights: the 4 x 4 block pattern, sized once, and the value index of each weight's
+  // diagonal entry in it.
+  SparseMatrix block_pattern_;
+  std::vector<int> weight_diagonal_;
+
+ private:
+  // Calls visit once with the rational basis at u of the control net at q (its weight columns
+  // filled when `weight_columns`); throws Error for q of the wrong size or u outside the domain.
+  virtual void visit_rational_point(
+      ConstVectorRef q, const Eigen::Vector2d& u, bool weight_columns,
+      const std::function<void(const RationalPoint&)>& visit) const = 0;
+  // The scalar matrices S_M, S_D, S_K of fixed weights at initial_coordinates_ (called once by
+  // build_coordinates) and the block matrices M, D, K of free weights at q.
+  virtual void assemble_scalar(ModelMatrices& scalar) const = 0;
+  virtual void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const = 0;
+};
+
+/// Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot), the velocity-product part of a
+/// point's acceleration with free weights (qd = [Pdot_0, wdot_0, ...], size 4 #control points),
+/// from A = x W with the homogeneous point A = sum_a N_a w_a P_a (Qin & Terzopoulos 1996,
+/// section 3). `point` needs its weight columns.
+Eigen::Vector3d free_weight_acceleration(const RationalPoint& point, ConstVectorRef qd);
+
+}  // namespace dnurbs
