@@ -10,9 +10,11 @@
 #include <variant>
 
 #include "core/error.h"
+#include "dynamics/triangular/triangular_tessellation.h"
 #include "io/mesh_export.h"
 #include "io/preview.h"
 #include "io/shape_file.h"
+#include "io/triangular_shape_file.h"
 #include "surface/adaptive_tessellation.h"
 #include "surface/tessellation.h"
 #include "tools/command_line.h"
@@ -28,10 +30,13 @@ MESH's extension: .obj (default choice; with a .mtl), .stl, .ply, .gltf (with a 
 A surface gets N x N cells, or an adaptive mesh (Goldenstein et al. 2005, section 5: a restricted binary
 multi-triangulation, crack-free) refined until every triangle is within E of the surface
 (sampled distance) or its vertex normals within DEG degrees; a curve becomes a tube of radius R
-around N segments.
+around N segments. A triangular_nurbs surface gets every domain triangle split into N x N
+triangles (default 4), or with --max-error E longest-edge bisection until its chord error is
+within E.
 
 options:
-  --resolution N      segments per direction, 3..4096 (default 32 for surfaces, 128 for curves)
+  --resolution N      segments per direction, 3..4096 (default 32 for surfaces, 128 for curves;
+                      triangular_nurbs: N x N per domain triangle, default 4)
   --max-error E       surfaces: adaptive mesh by the surface-error criterion, E > 0 (absolute,
                       in the shape's units), from the base grid that needs the fewest vertices
   --max-angle DEG     surfaces: adaptive mesh by the normals criterion, 0 < DEG <= 180
@@ -115,6 +120,32 @@ TriangleMesh export_adaptive_mesh(const NurbsSurface& shape, double max_error,
   return mesh;
 }
 
+// The mesh of a NURBS curve or surface shape (export_command's options).
+TriangleMesh export_shape_mesh(const Shape& shape, int resolution, double radius, double max_error,
+                               double max_angle_degrees, bool compare, const std::string& file,
+                               std::ostream& out) {
+  const std::string name = std::filesystem::path(file).stem().string();
+  TriangleMesh mesh;
+  if (const auto* surface = std::get_if<NurbsSurface>(&shape)) {
+    if (max_error > 0.0 || max_angle_degrees > 0.0) {
+      mesh = export_adaptive_mesh(*surface, max_error, max_angle_degrees, compare, name, out);
+    } else {
+      const int segments = resolution > 0 ? resolution : 32;
+      mesh = tessellate_surface(*surface, segments, segments, name);
+    }
+  } else {
+    if (max_error > 0.0 || max_angle_degrees > 0.0) {
+      throw UsageError("--max-error and --max-angle apply to surfaces; " + file + " is a curve");
+    }
+    const auto& curve = std::get<NurbsCurve>(shape);
+    const Eigen::MatrixX3d& points = curve.control_points();
+    const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    const double tube = radius > 0.0 ? radius : (diagonal > 0.0 ? 0.01 * diagonal : 0.01);
+    mesh = tessellate_curve_tube(curve, resolution > 0 ? resolution : 128, tube, 12, name);
+  }
+  return mesh;
+}
+
 }  // namespace
 
 void render_preview_png(const std::string& program, const std::filesystem::path& mesh,
@@ -178,26 +209,19 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   }
   const std::filesystem::path mesh_path = files[1];
   mesh_format_from_path(mesh_path);  // an unknown extension fails before any work
-  const Shape shape = read_shape_file(files[0]);
   const std::string name = std::filesystem::path(files[0]).stem().string();
   TriangleMesh mesh;
-  if (const auto* surface = std::get_if<NurbsSurface>(&shape)) {
-    if (max_error > 0.0 || max_angle_degrees > 0.0) {
-      mesh = export_adaptive_mesh(*surface, max_error, max_angle_degrees, compare, name, out);
-    } else {
-      const int segments = resolution > 0 ? resolution : 32;
-      mesh = tessellate_surface(*surface, segments, segments, name);
+  if (is_triangular_shape_file(files[0])) {
+    if (max_angle_degrees > 0.0 || compare) {
+      throw UsageError("--max-angle and --compare do not apply to triangular_nurbs surfaces");
     }
+    const TriangularNurbsSurface surface = read_triangular_shape_file(files[0]);
+    mesh = max_error > 0.0
+               ? tessellate_triangular_surface_adaptive(surface, max_error, 20, name)
+               : tessellate_triangular_surface(surface, resolution > 0 ? resolution : 4, name);
   } else {
-    if (max_error > 0.0 || max_angle_degrees > 0.0) {
-      throw UsageError("--max-error and --max-angle apply to surfaces; " + files[0] +
-                       " is a curve");
-    }
-    const auto& curve = std::get<NurbsCurve>(shape);
-    const Eigen::MatrixX3d& points = curve.control_points();
-    const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
-    const double tube = radius > 0.0 ? radius : (diagonal > 0.0 ? 0.01 * diagonal : 0.01);
-    mesh = tessellate_curve_tube(curve, resolution > 0 ? resolution : 128, tube, 12, name);
+    mesh = export_shape_mesh(read_shape_file(files[0]), resolution, radius, max_error,
+                             max_angle_degrees, compare, files[0], out);
   }
   export_mesh(mesh, mesh_path);
   out << "wrote " << mesh_path.string() << " (" << mesh.vertex_count() << " vertices, "

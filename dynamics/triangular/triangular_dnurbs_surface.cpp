@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "dynamics/triangular/triangular_free_weight_terms.h"
+#include "dynamics/triangular/triangular_local_sculpting.h"
 
 namespace dnurbs {
 
@@ -48,7 +49,8 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
                                                  const TriangularDNurbsSettings& settings)
     : RationalControlNetModel(settings.weight_mode, surface.control_point_count(),
                               settings.minimum_weight),
-      surface_(surface) {
+      surface_(surface),
+      settings_(settings) {
   // Validate the settings and the weights -------------------------------------------------
   if (!(minimum_weight_ > 0.0) || !std::isfinite(minimum_weight_)) {
     throw make_error("minimum weight ", minimum_weight_, " is not a positive finite number");
@@ -64,6 +66,19 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   if (settings.quadrature_subdivisions < 0 || settings.quadrature_subdivisions > 64) {
     throw make_error("quadrature subdivisions ", settings.quadrature_subdivisions,
                      " is outside 0..64 (0 = exact polynomial cells)");
+  }
+  if (settings.tessellation_subdivisions < 0 || settings.tessellation_subdivisions > 1024) {
+    throw make_error("tessellation subdivisions ", settings.tessellation_subdivisions,
+                     " is outside 0..1024 (0 = from the requested resolution)");
+  }
+  if (!(settings.tessellation_max_error >= 0.0) ||
+      !std::isfinite(settings.tessellation_max_error)) {
+    throw make_error("tessellation max error ", settings.tessellation_max_error,
+                     " is not a non-negative finite number (0 = uniform)");
+  }
+  if (settings.tessellation_max_level < 1 || settings.tessellation_max_level > 40) {
+    throw make_error("tessellation max level ", settings.tessellation_max_level,
+                     " is outside 1..40");
   }
   const Eigen::VectorXd& weights = surface.weights();
   if (mode_ == WeightMode::kFree) {
@@ -308,10 +323,15 @@ void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef for
 }
 
 double TriangularDNurbsSurface::potential_energy(ConstVectorRef q) const {
-  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2.
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2: with fixed weights x^alpha = J_alpha q and
+  // the constant K holds the same quadrature sum, E = (1/2) q^T K q (no basis evaluation).
   double energy = 0.0;
   if (stiffness_order() == 0) {
     return energy;
+  }
+  if (mode_ == WeightMode::kFixed) {
+    check_coordinates(q);
+    return 0.5 * q.dot(expanded_.stiffness * q);
   }
   for_each_point(control_net(q), stiffness_order(), false,
                  [&](int p, const TriangularBasisValues&,
@@ -362,6 +382,25 @@ void TriangularDNurbsSurface::add_distributed_force(ConstVectorRef q, const Forc
                    const Eigen::Vector3d f = quadrature_->weight(p) * density(sample);
                    add_transposed_jacobian_times(values, jacobian, 0, free, f, force);
                  });
+}
+
+void TriangularDNurbsSurface::fix_border() {
+  for (const int i : border_control_points(surface_.basis())) {
+    fix_control_point(i);
+  }
+}
+
+int TriangularDNurbsSurface::freeze_outside(const SculptedRegion& region, int margin) {
+  const std::vector<int> kept =
+      triangular_sculpted_control_points(surface_.basis(), region, margin);
+  int frozen = 0;
+  for (int i = 0; i < control_point_count_; ++i) {
+    if (!std::binary_search(kept.begin(), kept.end(), i)) {
+      fix_control_point(i);
+      ++frozen;
+    }
+  }
+  return frozen;
 }
 
 TriangularNurbsSurface TriangularDNurbsSurface::surface(ConstVectorRef q) const {

@@ -28,6 +28,7 @@
 // supported plates of any Poisson ratio are reproduced.
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "dynamics/core/quadrature_assembly.h"
@@ -56,6 +57,14 @@ struct TriangularDNurbsSettings {
   double minimum_weight = 1e-3;
   bool fix_weight_gauge = true;
   double weight_inertia = 0.0;
+  /// Model::tessellate when the caller asks for no adaptive mesh (its max_error is 0):
+  /// `tessellation_max_error` > 0 gives the adaptive mesh with that chord error and at most
+  /// `tessellation_max_level` bisections (1..40); otherwise the uniform mesh with
+  /// `tessellation_subdivisions` (1..1024) per domain triangle, or with 0 (the default) the
+  /// fewest that make every mesh edge at most (domain width) / segments along u and v.
+  int tessellation_subdivisions = 0;
+  double tessellation_max_error = 0.0;
+  int tessellation_max_level = 20;
 };
 
 /// A triangular D-NURBS surface as a Model. Control point a belongs to B-spline a of the basis
@@ -74,7 +83,8 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
   /// Fixed weights: -K q with the constant K; free weights: -integral sum_alpha k_alpha
   /// J_alpha^T x^alpha by the Dunavant rule on every polynomial cell.
   void add_internal_force(ConstVectorRef q, VectorRef force) const override;
-  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 over the triangulated domain.
+  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 over the triangulated domain ((1/2) q^T K q
+  /// with the constant K for fixed weights).
   double potential_energy(ConstVectorRef q) const override;
   /// g = -integral mu J^T Jdot qd (free weights; nothing for fixed weights).
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
@@ -85,6 +95,33 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
 
   /// The triangular NURBS surface at q.
   TriangularNurbsSurface surface(ConstVectorRef q) const;
+  /// The bounding box of the triangulated domain (no periodic direction, no pole). A parameter
+  /// in it lies in the domain only where the triangulation covers the box.
+  ParameterDomain parameter_domain(ConstVectorRef q) const override;
+  /// A domain that fills its bounding box (a rectangle, within 1e-12 of its area): the surface
+  /// at q over parameter_domain(q) with the exact normals (x_u x x_v) / |x_u x x_v|. Any other
+  /// domain (an L-shape, a hole) has no rectangular parameterization: throws Error.
+  ParametricSurface parametric_surface(ConstVectorRef q) const override;
+  /// The mesh of the surface at q (triangular_tessellation.h), with domain parameters as uv:
+  /// settings.max_error > 0 gives the adaptive mesh (chord error, settings.max_level
+  /// bisections), else the model's tessellation settings decide (TriangularDNurbsSettings).
+  TriangleMesh tessellate(ConstVectorRef q, const ModelTessellationSettings& settings,
+                          std::string name) const override;
+  /// S_u = x_u and S_v = x_v at u with their Jacobians (R^u_a I_3, R^v_a I_3 and, with free
+  /// weights, the weight columns E^u_a, E^v_a, for every B-spline listed at u), their rates and,
+  /// with free weights, Jdot qd: the second derivatives of x_u, x_v along qd from the
+  /// homogeneous forms A = x W (Piegl & Tiller, The NURBS Book, eq. 4.8 differentiated).
+  void tangent_kinematics(ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u,
+                          TangentKinematics& tangents) const override;
+  /// Fixes the control points of border_control_points (triangular_local_sculpting.h): every
+  /// B-spline whose trace on the boundary is not zero, so that the border curve cannot move
+  /// (free weights stay free). The exact clamped and simply supported conditions of
+  /// triangular_boundary_conditions.h constrain combinations and are not coordinate fixes.
+  void fix_border() override;
+  /// Fixes every control point outside triangular_sculpted_control_points(region, margin) and
+  /// returns how many were frozen.
+  int freeze_outside(const SculptedRegion& region, int margin) override;
+
   const TriangularNurbsSurface& initial_surface() const { return surface_; }
   const TriangularQuadrature& quadrature() const { return *quadrature_; }
   /// Area of the parametric domain.
@@ -120,6 +157,7 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
   void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
 
   TriangularNurbsSurface surface_;
+  TriangularDNurbsSettings settings_;
   std::shared_ptr<const TriangularQuadrature> quadrature_;  // immutable, shared by clones
   bool has_damping_ = false;
   std::array<bool, 6> has_stiffness_{};

@@ -3,8 +3,27 @@
 #include <variant>
 
 #include "io/json_messages.h"
+#include "io/scene_model_keys.h"
 
 namespace dnurbs {
+
+namespace {
+
+// The material keys of D-NURBS surfaces and the members they set (Terzopoulos 2003, eq. 1.20).
+struct SurfaceMaterialKey {
+  const char* key;
+  MaterialFunction DNurbsSurfaceMaterial::*member;
+};
+constexpr SurfaceMaterialKey kSurfaceMaterialKeys[] = {
+    {"mass_density", &DNurbsSurfaceMaterial::mass_density},
+    {"damping_density", &DNurbsSurfaceMaterial::damping_density},
+    {"a10", &DNurbsSurfaceMaterial::a10},
+    {"a01", &DNurbsSurfaceMaterial::a01},
+    {"b20", &DNurbsSurfaceMaterial::b20},
+    {"b11", &DNurbsSurfaceMaterial::b11},
+    {"b02", &DNurbsSurfaceMaterial::b02}};
+
+}  // namespace
 
 template <typename ShapeType>
 ShapeType read_scene_shape(const SceneReader& reader, const JsonValue& model,
@@ -85,6 +104,28 @@ void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
   model["weights"] = settings.weight_mode == WeightMode::kFree ? "free" : "fixed";
   model["quadrature_points"] = settings.quadrature_points;
   model["minimum_weight"] = settings.minimum_weight;
+}
+
+void read_dnurbs_surface_material(const SceneReader& reader, const JsonValue& model,
+                                  const std::string& path, DNurbsSurfaceMaterial& material) {
+  const JsonValue values = model_material(
+      reader, model, path, {"mass_density", "damping_density", "a10", "a01", "b20", "b11", "b02"});
+  const std::string material_path = join_json_path(path, "material");
+  const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  for (const SurfaceMaterialKey& entry : kSurfaceMaterialKeys) {
+    double value = (material.*entry.member)(origin);
+    reader.number_key(values, material_path, entry.key, value, 0.0, false);
+    material.*entry.member = value;
+  }
+}
+
+JsonOut dnurbs_surface_material_json(const DNurbsSurfaceMaterial& material) {
+  JsonOut values = JsonOut::object();
+  const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  for (const SurfaceMaterialKey& entry : kSurfaceMaterialKeys) {
+    values[entry.key] = (material.*entry.member)(origin);
+  }
+  return values;
 }
 
 }  // namespace dnurbs

@@ -1,12 +1,16 @@
 #pragma once
 // Scene keys that D-NURBS curves and surfaces share: the initial shape ("shape" inline in the
-// shape-file format, "shape_file", or "fit") and the settings ("weights", "quadrature_points",
-// "minimum_weight").
+// shape-file format, "shape_file", or "fit"), the settings ("weights", "quadrature_points",
+// "minimum_weight") and the thin-plate-under-tension material of surfaces (tensor-product and
+// triangular).
 
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "dynamics/dnurbs/dnurbs_model.h"
+#include "dynamics/dnurbs/dnurbs_surface.h"
 #include "io/scene_model_keys.h"
 #include "io/scene_reader.h"
 #include "io/scene_spec.h"
@@ -32,5 +36,28 @@ void write_scene_shape(const std::optional<Shape>& shape, const std::string& sha
 void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
                           const std::string& path, DNurbsSettings& settings);
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model);
+
+/// The "material" keys of D-NURBS surfaces ("mass_density", "damping_density", "a10", "a01",
+/// "b20", "b11", "b02", each a number >= 0) into `material`, keeping its value where a key is
+/// absent; fails naming the key for an unknown key or a bad value.
+void read_dnurbs_surface_material(const SceneReader& reader, const JsonValue& model,
+                                  const std::string& path, DNurbsSurfaceMaterial& material);
+/// The "material" object of a D-NURBS surface with constant material functions.
+JsonOut dnurbs_surface_material_json(const DNurbsSurfaceMaterial& material);
+
+/// The cost report's naive path of a D-NURBS spec (SceneModelSpec::naive_variant): a copy with
+/// free weights and the description of the choice, or nullopt when the weights are free already.
+/// `Spec` has `settings.weight_mode`.
+template <typename Spec>
+std::optional<std::pair<std::unique_ptr<SceneModelSpec>, std::string>> free_weights_variant(
+    const Spec& spec) {
+  if (spec.settings.weight_mode == WeightMode::kFree) {
+    return std::nullopt;
+  }
+  auto naive = std::make_unique<Spec>(spec);
+  naive->settings.weight_mode = WeightMode::kFree;
+  return std::pair{std::unique_ptr<SceneModelSpec>(std::move(naive)),
+                   std::string("fixed weights (naive: free weights)")};
+}
 
 }  // namespace dnurbs

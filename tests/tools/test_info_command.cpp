@@ -1,6 +1,8 @@
 // Tests of tools/info_command.cpp beyond the demo (tests/tools/test_run_command.cpp): a swung
 // surface is reported with its coordinates against the tensor-product D-NURBS surface of the same
-// shape, and the report says when the chosen model costs more per solve than its naive path.
+// shape, and the report says when the chosen model costs more per solve than its naive path; the
+// triangular D-NURBS example shows its coordinates, constant Kronecker matrices and the saving of
+// fixed weights.
 
 #include <filesystem>
 #include <string>
@@ -40,6 +42,17 @@ TEST(InfoCommand, SwungSurfaceShowsItsCoordinatesAgainstTheTensorProductTwin) {
   ASSERT_EQ(toroid.exit_code, 0) << toroid.err;
   EXPECT_THAT(toroid.out, HasSubstr("toroid (swung_surface): 32 coordinates"));
   EXPECT_THAT(toroid.out, ::testing::ContainsRegex("one solve [0-9.]+x (cheaper|more expensive)"));
+}
+
+TEST(InfoCommand, DescribesTriangularDNurbsSurfaces) {
+  const testing::CommandResult info =
+      testing::run_dnurbs("info " + (kExamples / "triangular_l_shape.json").string());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  // L-shape, 3 cells per unit: 27 cells, 54 triangles of 6 quadratic B-splines, 3 coordinates each
+  EXPECT_THAT(info.out, HasSubstr("sheet (triangular_dnurbs_surface): 972 coordinates"));
+  EXPECT_THAT(info.out, HasSubstr("x, y, z share one scalar matrix (S (x) I_3)"));
+  EXPECT_THAT(info.out, HasSubstr("saved: fixed weights (naive: free weights)"));
+  EXPECT_THAT(info.out, HasSubstr("forces: 3 (1 pressure, 2 spring)"));
 }
 
 }  // namespace

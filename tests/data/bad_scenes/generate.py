@@ -158,6 +158,43 @@ case("swung_closed_surface_border", f, "models[2]: this swung surface is closed"
 def f(s): s["models"].append({"type": "swung_surface", "prototype": {"kind": "sphere", "minor_radius": 1}})
 case("swung_prototype_unknown_key", f, "models[2].prototype.minor_radius: unknown key for a sphere prototype")
 
+# Triangular D-NURBS surfaces (a third model appended to the base scene)
+tile = {"type": "triangular_nurbs", "degree": 1, "vertices": [[0, 0], [1, 0], [0, 1]],
+        "triangles": [[0, 1, 2]], "control_points": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}
+def triangular(s, **keys):
+    model = {"name": "tri", "type": "triangular_dnurbs_surface", "domain": {"shape": "l_shape"}}
+    model.update(keys)
+    s["models"].append(model)
+    return model
+def f(s): triangular(s, shape=copy.deepcopy(tile))
+case("triangular_shape_and_domain", f, "models[2].shape: expected exactly one of \"shape\" (a triangular_nurbs shape), \"shape_file\" and \"domain\"")
+def f(s): triangular(s, domain={"shape": "circle"})
+case("triangular_unknown_domain", f, "models[2].domain.shape: expected one of rectangle, l_shape, square_with_hole")
+def f(s): triangular(s, domain={"shape": "l_shape", "knot_radius": 0.6})
+case("triangular_knot_radius_too_large", f, "models[2].domain:", "radius")
+def f(s): triangular(s, domain={"shape": "l_shape", "lo": [0, 0]})
+case("triangular_corner_of_l_shape", f, "models[2].domain.lo: only a rectangle has corners")
+def f(s): triangular(s, domain={"shape": "rectangle", "cells": [0, 2]})
+case("triangular_zero_cells", f, "models[2].domain.cells: expected [cells_u, cells_v], each 1..256")
+def f(s): t = copy.deepcopy(tile); t["triangles"] = [[0, 2, 1]]; m = triangular(s, shape=t); del m["domain"]
+case("triangular_clockwise_triangle", f, "models[2].shape.triangles: invalid triangulation")
+def f(s): t = copy.deepcopy(tile); t["control_points"].pop(); m = triangular(s, shape=t); del m["domain"]
+case("triangular_control_point_count", f, "models[2].shape.control_points: expected 3 control points")
+def f(s): t = copy.deepcopy(tile); t["weights"] = [1, -1, 1]; m = triangular(s, shape=t); del m["domain"]
+case("triangular_negative_weight", f, "models[2].shape.weights[1]: expected a number > 0, got -1")
+def f(s): t = copy.deepcopy(tile); t["knot_clouds"] = [[[0, 0]]]; m = triangular(s, shape=t); del m["domain"]
+case("triangular_knot_cloud_count", f, "models[2].shape.knot_clouds: expected 3 knot clouds")
+def f(s): triangular(s, quadrature_degree=15)
+case("triangular_quadrature_degree", f, "models[2].quadrature_degree: expected an integer in 0..14, got number 15")
+def f(s): triangular(s, tessellation={"max_error": -1})
+case("triangular_negative_max_error", f, "models[2].tessellation.max_error: expected a number >= 0, got -1")
+def f(s): triangular(s, tessellation={"levels": 3})
+case("triangular_tessellation_unknown_key", f, "models[2].tessellation.levels: unknown key")
+def f(s): triangular(s, boundary={"fixed_points": [1000]})
+case("triangular_fixed_point_out_of_range", f, "models[2]:", "control point 1000 does not exist")
+def f(s): triangular(s, quadrature_points=3)
+case("triangular_quadrature_points", f, "models[2].quadrature_points: unknown key for a triangular_dnurbs_surface model")
+
 import sys
 out = os.path.dirname(os.path.abspath(__file__))
 # Hand-written cases (design_*.json) are kept with their lines of expected_messages.tsv

@@ -86,7 +86,18 @@ TEST(TriangularDNurbsStiffness, EnergyAndInternalForceAreTheQuadraticForm) {
                                       plate_under_tension());
   const Eigen::VectorXd q = model.initial_coordinates();
   const SparseMatrix& stiffness = model.constant_matrices()->stiffness;
-  EXPECT_NEAR(model.potential_energy(q), 0.5 * q.dot(stiffness * q), 1e-12 * q.dot(stiffness * q));
+  // The energy by quadrature (free weights: E = (1/2) q^T K(q) q too, as J_alpha q = x^alpha by
+  // Euler's theorem for the weights) equals the fixed-weight (1/2) q^T K q of the same shape
+  // (rounding of two quadrature sums: 1e-12 relative).
+  const TriangularDNurbsSurface free(test::curved_triangular_surface(basis, true),
+                                     plate_under_tension(), free_weights());
+  const Eigen::VectorXd qf = free.initial_coordinates();
+  ModelMatrices free_matrices;
+  free.assemble_matrices(qf, free_matrices);
+  const double energy = 0.5 * q.dot(stiffness * q);
+  EXPECT_NEAR(model.potential_energy(q), energy, 1e-12 * energy);
+  EXPECT_NEAR(free.potential_energy(qf), energy, 1e-12 * energy);
+  EXPECT_NEAR(0.5 * qf.dot(free_matrices.stiffness * qf), energy, 1e-12 * energy);
   Eigen::VectorXd force = Eigen::VectorXd::Zero(q.size());
   model.add_internal_force(q, force);
   EXPECT_LT((force + stiffness * q).norm(), 1e-14 * (stiffness * q).norm());
