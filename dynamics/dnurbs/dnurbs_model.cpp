@@ -40,7 +40,7 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
   build_material_table(mass_density, damping_density, stiffness, stiffness_names);
   build_pattern();
   build_coordinates(control_points, weights, pattern_.scalar, settings.weight_inertia,
-                    settings.fix_weight_gauge);
+                    settings.weight_stiffness, settings.fix_weight_gauge);
 }
 
 void DNurbsModel::validate(const Eigen::VectorXd& weights, const DNurbsSettings& settings) const {

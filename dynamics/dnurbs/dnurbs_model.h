@@ -9,6 +9,7 @@
 // re-assembled from that cache at every state into a pattern sized once.
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,13 +42,17 @@ struct DNurbsSettings {
   /// setting (the default) weight 0 is a fixed coordinate, which removes exactly that direction
   /// without restricting the shape. Switch it off only when fixing some weight yourself.
   bool fix_weight_gauge = true;
-  /// Free weights only: a constant inertia added to the diagonal of M for every weight
-  /// coordinate (default 0: exact D-NURBS). Beyond the gauge, M(q) can be singular or nearly so
-  /// along weight directions that barely move the shape (exactly singular for a straight line
-  /// with linear parametrization, ~1e-16 relative for a gently bent 25-point cubic), so light
-  /// weights accelerate without bound; a small positive value (e.g. 1e-4 mu) makes the motion
-  /// well posed. It is a constant term of M, so g and energy conservation are unaffected.
-  double weight_inertia = 0.0;
+  /// Free weights only: the weight regularization (rational_control_net_model.h, "Well-posed
+  /// free weights"). Unset (the default): scale-aware, derived from the initial shape,
+  ///   weight inertia   m_w = 10 mean_a M_ww(a, a) at the initial state,
+  ///   weight stiffness k_w =  2 mean_a K_ww(a, a) at the initial state,
+  /// k_w pulling every weight towards its initial value (energy (1/2) k_w |w - w_0|^2). Set
+  /// (>= 0): that constant inertia and, unless weight_stiffness is set too, no weight stiffness
+  /// (0, 0 is exact D-NURBS, whose M(q) is singular beyond the gauge for straight and flat
+  /// shapes, so that free-weight runs there diverge).
+  std::optional<double> weight_inertia;
+  /// Free weights only: an explicit weight stiffness k_w (>= 0); unset: as above.
+  std::optional<double> weight_stiffness;
 };
 
 /// A D-NURBS curve or surface as a Model. Use DNurbsCurve or DNurbsSurface to build one.

@@ -168,9 +168,7 @@ void DNurbsModel::assemble_free(ConstVectorRef q, ModelMatrices& matrices) const
         std::fill(damping.begin(), damping.end(), 0.0);
         std::fill(stiffness.begin(), stiffness.end(), 0.0);
       });
-  for (const int index : weight_diagonal_) {
-    matrices.mass.valuePtr()[index] += weight_inertia_;
-  }
+  add_weight_regularization(matrices);
 }
 
 void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
@@ -178,7 +176,9 @@ void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
     force.noalias() -= expanded_.stiffness * q;
     return;
   }
-  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T x^alpha (x^alpha = J_alpha q).
+  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T x^alpha (x^alpha = J_alpha q), and the
+  // weight anchor -k_w (w - w_0) (rational_control_net_model.h).
+  add_weight_anchor_force(q, force);
   const int order = stiffness_order();
   if (order == 0) {
     return;
@@ -204,11 +204,11 @@ void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
 }
 
 double DNurbsModel::potential_energy(ConstVectorRef q) const {
+  double energy = weight_anchor_energy(q);
   const int order = stiffness_order();
   if (order == 0) {
-    return 0.0;
+    return energy;
   }
-  double energy = 0.0;
   for_each_quadrature_point(
       control_net(q), order, false,
       [&](int /*element*/, int /*point*/, double weight, const double* m,

@@ -16,10 +16,37 @@ RationalControlNetModel::RationalControlNetModel(WeightMode mode, int control_po
       control_point_count_(control_point_count),
       minimum_weight_(minimum_weight) {}
 
+namespace {
+
+// The default weight regularization (rational_control_net_model.h, "Well-posed free weights"):
+// m_w and k_w as multiples of the mean diagonal of the weight rows of M and K at the initial state.
+constexpr double kWeightInertiaScale = 10.0;
+constexpr double kWeightStiffnessScale = 2.0;
+
+double checked_regularization(const char* name, double value) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    throw make_error(name, " ", value, " is not a non-negative finite number");
+  }
+  return value;
+}
+
+// The mean of the entries of `values` at `indices` (0 for none).
+double mean_at(const double* values, const std::vector<int>& indices) {
+  double sum = 0.0;
+  for (const int index : indices) {
+    sum += values[index];
+  }
+  return indices.empty() ? 0.0 : sum / static_cast<double>(indices.size());
+}
+
+}  // namespace
+
 void RationalControlNetModel::build_coordinates(const Eigen::MatrixX3d& control_points,
                                                 const Eigen::VectorXd& weights,
                                                 const SparseMatrix& scalar_pattern,
-                                                double weight_inertia, bool fix_weight_gauge) {
+                                                std::optional<double> weight_inertia,
+                                                std::optional<double> weight_stiffness,
+                                                bool fix_weight_gauge) {
   initial_coordinates_.resize(coordinate_count());
   for (int i = 0; i < control_point_count_; ++i) {
     initial_coordinates_.segment<3>(i * per_control_point_) = control_points.row(i).transpose();
@@ -38,10 +65,6 @@ void RationalControlNetModel::build_coordinates(const Eigen::MatrixX3d& control_
   }
   // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry
   block_pattern_ = dense_block_pattern(scalar_pattern, 4);
-  weight_inertia_ = weight_inertia;
-  if (!(weight_inertia_ >= 0.0) || !std::isfinite(weight_inertia_)) {
-    throw make_error("weight inertia ", weight_inertia_, " is not a non-negative finite number");
-  }
   const auto* outer = scalar_pattern.outerIndexPtr();
   const auto* inner = scalar_pattern.innerIndexPtr();
   for (int i = 0; i < control_point_count_; ++i) {
@@ -49,9 +72,51 @@ void RationalControlNetModel::build_coordinates(const Eigen::MatrixX3d& control_
     weight_diagonal_.push_back(dense_block_value_index(
         block_pattern_, scalar_pattern, static_cast<int>(found - inner), i, 3, 3, 4));
   }
+  // The weight regularization (file comment): explicit values, or scale-aware ones from the
+  // mean weight diagonals of M and K at the initial state (assembled without regularization)
+  if (weight_inertia) {
+    weight_inertia_ = checked_regularization("weight inertia", *weight_inertia);
+    weight_stiffness_ = checked_regularization("weight stiffness", weight_stiffness.value_or(0.0));
+  } else {
+    ModelMatrices natural;
+    assemble_free(initial_coordinates_, natural);
+    weight_inertia_ = kWeightInertiaScale * mean_at(natural.mass.valuePtr(), weight_diagonal_);
+    weight_stiffness_ =
+        weight_stiffness
+            ? checked_regularization("weight stiffness", *weight_stiffness)
+            : kWeightStiffnessScale * mean_at(natural.stiffness.valuePtr(), weight_diagonal_);
+  }
   if (fix_weight_gauge) {
     fix_weight(0);
   }
+}
+
+void RationalControlNetModel::add_weight_regularization(ModelMatrices& matrices) const {
+  for (const int index : weight_diagonal_) {
+    matrices.mass.valuePtr()[index] += weight_inertia_;
+    matrices.stiffness.valuePtr()[index] += weight_stiffness_;
+  }
+}
+
+void RationalControlNetModel::add_weight_anchor_force(ConstVectorRef q, VectorRef force) const {
+  if (mode_ != WeightMode::kFree) {
+    return;
+  }
+  for (int i = 0; i < control_point_count_; ++i) {
+    force[4 * i + 3] -= weight_stiffness_ * (q[4 * i + 3] - initial_coordinates_[4 * i + 3]);
+  }
+}
+
+double RationalControlNetModel::weight_anchor_energy(ConstVectorRef q) const {
+  double energy = 0.0;
+  if (mode_ != WeightMode::kFree) {
+    return energy;
+  }
+  for (int i = 0; i < control_point_count_; ++i) {
+    const double stretch = q[4 * i + 3] - initial_coordinates_[4 * i + 3];
+    energy += 0.5 * weight_stiffness_ * stretch * stretch;
+  }
+  return energy;
 }
 
 void RationalControlNetModel::check_coordinates(ConstVectorRef q) const {

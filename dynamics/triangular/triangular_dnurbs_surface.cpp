@@ -128,7 +128,7 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   // Coordinates: q = [P_0, P_1, ...] or [P_0, w_0, P_1, w_1, ...], the constant matrices of
   // fixed weights or the block pattern of free ones ------------------------------------------
   build_coordinates(surface.control_points(), weights, pattern_.scalar, settings.weight_inertia,
-                    settings.fix_weight_gauge);
+                    0.0, settings.fix_weight_gauge);
 }
 
 std::unique_ptr<Model> TriangularDNurbsSurface::clone() const {

@@ -1,5 +1,7 @@
 #include "io/models/dnurbs_scene_keys.h"
 
+#include <utility>
+
 #include <variant>
 
 #include "io/json_messages.h"
@@ -98,12 +100,29 @@ void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
   }
   reader.integer_key(model, path, "quadrature_points", settings.quadrature_points, 0, 32);
   reader.number_key(model, path, "minimum_weight", settings.minimum_weight, 0.0, true);
+  // The weight regularization of free weights (rational_control_net_model.h): absent keys keep
+  // the scale-aware default.
+  for (const auto& [key, member] :
+       {std::pair{"weight_inertia", &DNurbsSettings::weight_inertia},
+        std::pair{"weight_stiffness", &DNurbsSettings::weight_stiffness}}) {
+    if (reader.find(model, key) != nullptr) {
+      double value = 0.0;
+      reader.number_key(model, path, key, value, 0.0, false);
+      settings.*member = value;
+    }
+  }
 }
 
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
   model["weights"] = settings.weight_mode == WeightMode::kFree ? "free" : "fixed";
   model["quadrature_points"] = settings.quadrature_points;
   model["minimum_weight"] = settings.minimum_weight;
+  if (settings.weight_inertia) {
+    model["weight_inertia"] = *settings.weight_inertia;
+  }
+  if (settings.weight_stiffness) {
+    model["weight_stiffness"] = *settings.weight_stiffness;
+  }
 }
 
 void read_dnurbs_surface_material(const SceneReader& reader, const JsonValue& model,

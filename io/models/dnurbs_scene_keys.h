@@ -32,7 +32,8 @@ ShapeType read_scene_shape(const SceneReader& reader, const JsonValue& model,
 void write_scene_shape(const std::optional<Shape>& shape, const std::string& shape_file,
                        const std::optional<SceneFit>& fit, JsonOut& model);
 
-/// "weights" (fixed or free), "quadrature_points" and "minimum_weight" into `settings`.
+/// "weights" (fixed or free), "quadrature_points", "minimum_weight" and the optional
+/// "weight_inertia" and "weight_stiffness" (>= 0; absent: scale-aware) into `settings`.
 void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
                           const std::string& path, DNurbsSettings& settings);
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model);

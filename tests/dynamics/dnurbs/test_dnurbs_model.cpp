@@ -23,9 +23,13 @@
 namespace dnurbs {
 namespace {
 
+// Exact D-NURBS free weights (weight inertia 0 and no weight stiffness): these tests check the
+// identities of the exact model (M = integral mu J^T J, f_int = -K q); the default weight
+// regularization is tested in test_rational_control_net_model.cpp.
 DNurbsSettings free_weights() {
   DNurbsSettings settings;
   settings.weight_mode = WeightMode::kFree;
+  settings.weight_inertia = 0.0;
   return settings;
 }
 
