@@ -3,7 +3,7 @@
 
 Reads the CSV files of `dnurbs-bench --out DIR` (work_precision.csv, richardson.csv, scaling.csv,
 scaling_fit.csv, machine.csv, needs.csv) and, if present in the same directory, springs.csv
-(spring_step_bench), evaluation.csv
+(spring_step_bench), free_weights.csv (free_step_bench), evaluation.csv
 (`evaluation_bench --out DIR`) and hardcase.xml (`test_hardcase --gtest_output=xml:DIR/hardcase.xml`).
 Writes log-log PNGs (work_precision_<family>.png, scaling.png) into --plots and the tables into
 --markdown.
@@ -123,6 +123,25 @@ def work_precision_summary(rows):
                   "error at finest dt", "s per simulated s", "observed order"], out)
 
 
+def free_weights_section(rows):
+    """The free-weight step table of free_step_bench (bench/free_weights/README.md)."""
+    text = ["\n## Free-weight step\n",
+            "free_step_bench: curved clamped bicubic sheets and a curved cubic rod, newmark, "
+            "dt = 0.01. fixed: fixed weights; reference: free weights with "
+            "IntegratorSettings::lean_step = false (separate assembly and forces, sparse sums, "
+            "SparseCholesky); lean: the lean step; +N: up to 4 Newton iterations (tolerance "
+            "1e-10). Ratios and heap allocations per step from one run.\n"]
+    text.append(table(["shape", "free coordinates", "fixed [s/step]", "reference / fixed",
+                       "lean / fixed", "lean+N / fixed", "reference / lean",
+                       "allocations reference", "allocations lean", "allocations lean+N"],
+                      [[r["shape"], r["free_coordinates"], fmt(r["fixed_s"]),
+                        fmt(r["reference_over_fixed"]), fmt(r["lean_over_fixed"]),
+                        fmt(r["lean_newton_over_fixed"]), fmt(r["reference_over_lean"]),
+                        r["allocations_reference"], r["allocations_lean"],
+                        r["allocations_lean_newton"]] for r in rows]))
+    return "\n".join(text)
+
+
 def springs_section(rows):
     """The implicit-springs table of spring_step_bench (bench/springs/README.md)."""
     text = ["\n## Implicit springs in the step\n",
@@ -221,6 +240,8 @@ def main():
                      for r in read_csv(data("needs.csv"))]))
     if os.path.exists(data("springs.csv")):
         md.append(springs_section(read_csv(data("springs.csv"))))
+    if os.path.exists(data("free_weights.csv")):
+        md.append(free_weights_section(read_csv(data("free_weights.csv"))))
     if os.path.exists(data("evaluation.csv")):
         md.append("\n## Evaluation\n")
         columns = ["evaluator", "degree", "rational", "evaluations_per_second", "ratio_to_occt",

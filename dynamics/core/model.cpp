@@ -34,6 +34,25 @@ double Model::potential_energy(ConstVectorRef q) const {
 void Model::add_inertial_force(ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
                                VectorRef /*force*/) const {}
 
+void Model::assemble_step(ConstVectorRef q, ConstVectorRef qd, bool inertial,
+                          ModelMatrices& matrices, VectorRef force) const {
+  assemble_matrices(q, matrices);
+  add_internal_force(q, force);
+  if (inertial) {
+    add_inertial_force(q, qd, force);
+  }
+}
+
+void Model::add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVectorRef a, bool inertial,
+                              VectorRef force) const {
+  ModelMatrices matrices;
+  assemble_step(q, qd, inertial, matrices, force);
+  if (matrices.damping.nonZeros() > 0) {
+    force.noalias() -= matrices.damping * qd;
+  }
+  force.noalias() -= matrices.mass * a;
+}
+
 void Model::add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
                             VectorRef force) const {
   force += position_jacobian(q, u).transpose() * f;

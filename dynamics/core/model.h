@@ -142,6 +142,20 @@ class Model {
   /// Adds the generalized inertial force g(q, qd) = -integral mu L^T Ldot qd (zero where M does
   /// not depend on q: the default adds nothing).
   virtual void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const;
+  /// The model's terms of one integrator iterate in one evaluation: M, D, K at q into `matrices`
+  /// (as assemble_matrices) and force += f_int(q), plus g(q, qd) when `inertial` (force and qd
+  /// of velocity_count()). State-dependent models override it to share one pass over their
+  /// quadrature points (free-weight D-NURBS: the rational Jacobian once per Gauss point).
+  /// Default: assemble_matrices, add_internal_force and add_inertial_force in turn.
+  virtual void assemble_step(ConstVectorRef q, ConstVectorRef qd, bool inertial,
+                             ModelMatrices& matrices, VectorRef force) const;
+  /// The right-hand side of one integrator iterate without the matrices: force += f_int(q)
+  /// (+ g(q, qd) when `inertial`) - D(q) qd - M(q) a (a, qd, force of velocity_count()), for
+  /// iterates that keep an earlier factorization (modified Newton). Models override it to skip
+  /// the assembly (free-weight D-NURBS: one pass, O(#active control points) per Gauss point).
+  /// Default: assemble_step, then the products with D and M.
+  virtual void add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVectorRef a,
+                                 bool inertial, VectorRef force) const;
   /// Adds L(u)^T f, the generalized force of a point force f at u.
   virtual void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
                                VectorRef force) const;

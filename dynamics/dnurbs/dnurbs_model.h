@@ -72,6 +72,15 @@ class DNurbsModel : public RationalControlNetModel {
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
+  /// Free weights: M, D, K, f_int and g (when `inertial`) in one pass over the Gauss points,
+  /// the rational Jacobian evaluated once per point (free_pass); fixed weights: Model's default.
+  void assemble_step(ConstVectorRef q, ConstVectorRef qd, bool inertial, ModelMatrices& matrices,
+                     VectorRef force) const override;
+  /// Free weights: f_int + g - D qd - M a matrix-free in one pass (per Gauss point
+  /// -J_0^T w (mu J_0 a + gamma J_0 qd), and the weight inertia's -m_w a_w); fixed weights:
+  /// Model's default.
+  void add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVectorRef a, bool inertial,
+                         VectorRef force) const override;
 
   /// The parametric measure of the domain (length of a curve's, area of a surface's).
   double parametric_measure() const;
@@ -120,6 +129,29 @@ class DNurbsModel : public RationalControlNetModel {
   // Assembly of the scalar (fixed weights) or block (free weights) matrices at q.
   void assemble_scalar(ModelMatrices& scalar) const override;
   void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
+  // Free weights, one pass over the Gauss points: M, D, K at q into `matrices` (block pattern,
+  // weight regularization added) and, when `force` is non-null (coordinate_count() entries), the
+  // internal force f_int(q) and, when `qd` is non-null too, the inertial force g(q, qd) added to
+  // it. The element matrices live in per-thread buffers: no allocation once they have grown.
+  void free_pass(ConstVectorRef q, const double* qd, ModelMatrices& matrices, double* force) const;
+  // The element matrices of free_pass: the distinct entries of the 4 x 4 blocks of the upper
+  // control point pairs (see the .cpp).
+  struct FreeElementMatrices {
+    const double* mass;
+    const double* damping;
+    const double* stiffness;
+  };
+  // Adds element `element`'s matrices (and their mirrored lower pairs) into the block pattern.
+  void scatter_free_element(int element, const FreeElementMatrices& local,
+                            ModelMatrices& matrices) const;
+  // Per Gauss point (quadrature weight `weight`, material values m): force -= J_alpha^T (w k_alpha
+  // x^alpha) for the quantities with stiffness, and force -= w mu J_0^T (Jdot qd) (free weights,
+  // force and qd of coordinate_count()).
+  void subtract_elastic_force(double weight, const double* m, const PointBasis& basis,
+                              const RationalJacobian& jacobian, double* force) const;
+  static void subtract_inertial_force(double weight, const double* m, const PointBasis& basis,
+                                      const RationalJacobian& jacobian, const double* qd,
+                                      double* force);
   // Highest derivative order the stiffness needs (1 or 2; 0 without stiffness).
   int stiffness_order() const;
 

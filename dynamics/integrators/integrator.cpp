@@ -146,9 +146,14 @@ void subtract_block_terms(const System& system, bool with_acceleration, Integrat
         R.noalias() -= scalar.mass * ConstNodeMap(w.a.data() + vo, nodes, 3);
       }
     } else {
-      system.model(block->model)
-          .add_internal_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
-                              w.rhs.segment(vo, vc));
+      if (!block->fused) {
+        system.model(block->model)
+            .add_internal_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
+                                w.rhs.segment(vo, vc));
+      }
+      if (block->reused) {
+        continue;  // add_step_residual subtracted D v and M a
+      }
       const ModelMatrices& matrices = block->full_matrices(system);
       if (matrices.damping.nonZeros() > 0) {
         w.rhs.segment(vo, vc).noalias() -= matrices.damping * w.v_iter.segment(vo, vc);
@@ -300,12 +305,14 @@ void Integrator::step(System& system, double dt) {
   }
   w.q_iter = w.q_pred;
   last_iterations_ = 0;
+  double previous_correction = -1.0;  // the first solve factors the state-dependent blocks
   for (int k = 0; k <= settings_.newton_iterations; ++k) {
     const bool with_acceleration = k > 0 || warm_start;
-    solve_iteration(system, dt, with_acceleration);
+    solve_iteration(system, dt, with_acceleration, previous_correction);
     last_iterations_ = k;
+    previous_correction = w.delta.norm();
     if (with_acceleration &&
-        w.delta.norm() <= settings_.newton_tolerance * std::max(w.a.norm(), 1e-300)) {
+        previous_correction <= settings_.newton_tolerance * std::max(w.a.norm(), 1e-300)) {
       break;
     }
   }
@@ -353,10 +360,11 @@ bool Integrator::factor_constant_blocks(const System& system) {
   return any_state_dependent;
 }
 
-void Integrator::solve_iteration(const System& system, double dt, bool with_acceleration) {
+void Integrator::solve_iteration(const System& system, double dt, bool with_acceleration,
+                                 double previous_correction) {
+  const bool refactor = previous_correction < 0.0;
   Workspace& w = *work_;
   const StepCoefficients& c = w.coefficients;
-  const std::vector<int>& fixed = system.fixed_coordinates();
   if (with_acceleration) {
     w.increment = c.position * w.a;
     system.advance_coordinates(w.q_pred, w.increment, w.q_iter);
@@ -372,37 +380,71 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
     }
   }
   update_springs(system);
-  const bool fold_springs = settings_.springs == SpringTreatment::kRefactor;
-  bool assembled = false;
+  // b = f + g + f_int(q) - D v - M a at the iterate, block by block (a = 0 before the first
+  // solve without a warm start). The springs' pull k L^T (target - x) is in b where the spring
+  // terms carry no target (a solve hook, kRefactor) or the springs are explicit.
+  const bool explicit_springs = settings_.springs == SpringTreatment::kExplicit;
+  const bool central = settings_.scheme == IntegratorScheme::kCentral;
+  if (central) {
+    w.rhs = w.external;
+  } else {
+    w.rhs.setZero(system.velocity_count());
+    system.add_applied_forces(c.force_time, w.q_iter, w.v_iter, w.rhs, explicit_springs);
+  }
+  if (assemble_state_dependent_blocks(system, refactor)) {
+    ++factorization_serial_;
+  }
   for (const auto& block : w.blocks.blocks) {
-    if (block->constant) {
+    if (!central && !block->fused) {
+      system.model(block->model)
+          .add_inertial_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
+                              w.v_iter.segment(block->velocity_offset, block->velocity_count),
+                              w.rhs.segment(block->velocity_offset, block->velocity_count));
+    }
+  }
+  if (!explicit_springs && (hook_ || settings_.springs == SpringTreatment::kRefactor)) {
+    system.add_spring_forces(c.force_time, w.q_iter, w.rhs);
+  }
+  subtract_block_terms(system, with_acceleration, w);
+  solve_step_system(system, dt);
+  // Modified Newton: a correction from a kept factor that does not contract by kNewtonStallRatio
+  // is discarded; the blocks are factored at this iterate and the same residual solved again
+  // (a Newton correction, as the reference path takes at every iterate).
+  if (!refactor && w.delta.norm() > kNewtonStallRatio * previous_correction &&
+      refactor_reused_blocks(system)) {
+    solve_step_system(system, dt);
+  }
+  w.a += w.delta;
+}
+
+bool Integrator::refactor_reused_blocks(const System& system) {
+  Workspace& w = *work_;
+  const StepCoefficients& c = w.coefficients;
+  bool factored = false;
+  for (const auto& block : w.blocks.blocks) {
+    if (!block->reused) {
       continue;
     }
     system.model(block->model)
         .assemble_matrices(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
                            block->matrices);
-    block->factor(system, c.velocity, c.position, fold_springs);
+    if (!block->factor_lean(c.velocity, c.position)) {
+      block->factor(system, c.velocity, c.position, /*fold_springs=*/false);
+    }
+    block->reused = false;
     ++factorization_count_;
-    assembled = true;
+    factored = true;
   }
-  if (assembled) {
+  if (factored) {
     ++factorization_serial_;
   }
-  // b = f + g + f_int(q) - D v - M a at the iterate, block by block (a = 0 before the first
-  // solve without a warm start). The springs' pull k L^T (target - x) is in b where the spring
-  // terms carry no target (a solve hook, kRefactor) or the springs are explicit.
-  const bool explicit_springs = settings_.springs == SpringTreatment::kExplicit;
-  if (settings_.scheme == IntegratorScheme::kCentral) {
-    w.rhs = w.external;
-  } else {
-    w.rhs.setZero(system.velocity_count());
-    system.add_applied_forces(c.force_time, w.q_iter, w.v_iter, w.rhs, explicit_springs);
-    system.add_inertial_forces(w.q_iter, w.v_iter, w.rhs);
-  }
-  if (!explicit_springs && (hook_ || fold_springs)) {
-    system.add_spring_forces(c.force_time, w.q_iter, w.rhs);
-  }
-  subtract_block_terms(system, with_acceleration, w);
+  return factored;
+}
+
+void Integrator::solve_step_system(const System& system, double dt) {
+  Workspace& w = *work_;
+  const StepCoefficients& c = w.coefficients;
+  const std::vector<int>& fixed = system.fixed_coordinates();
   if (hook_) {
     StepSystem step_system;
     step_system.time = c.force_time;
@@ -426,7 +468,49 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
   } else {
     w.blocks.solve(w.rhs, w.delta);
   }
-  w.a += w.delta;
+}
+
+bool Integrator::assemble_state_dependent_blocks(const System& system, bool refactor) {
+  Workspace& w = *work_;
+  const StepCoefficients& c = w.coefficients;
+  const bool fold_springs = settings_.springs == SpringTreatment::kRefactor;
+  const bool central = settings_.scheme == IntegratorScheme::kCentral;
+  const SparseCholeskySettings& cholesky = settings_.cholesky;
+  bool factored = false;
+  for (const auto& block : w.blocks.blocks) {
+    if (block->constant) {
+      continue;
+    }
+    const Model& model = system.model(block->model);
+    const auto q = w.q_iter.segment(block->coordinate_offset, block->coordinate_count);
+    const auto v = w.v_iter.segment(block->velocity_offset, block->velocity_count);
+    auto rhs = w.rhs.segment(block->velocity_offset, block->velocity_count);
+    // The lean factorization serves blocks without spring terms on a simplicial backend
+    const bool simplicial = cholesky.backend == CholeskyBackend::kSimplicialLdlt ||
+                            (cholesky.backend == CholeskyBackend::kAutomatic &&
+                             block->free.free_count() < cholesky.supernodal_threshold);
+    const bool lean = settings_.lean_step && simplicial && block->springs.term_count() == 0;
+    block->fused = settings_.lean_step;
+    block->reused = lean && !refactor && block->lean_active;
+    if (block->reused) {
+      // Modified Newton: the factor of an earlier iterate, the residual without the matrices
+      model.add_step_residual(q, v, w.a.segment(block->velocity_offset, block->velocity_count),
+                              !central, rhs);
+      continue;
+    }
+    if (block->fused) {
+      // One pass: M, D, K and b's f_int (+ g; the central scheme has g in `external`)
+      model.assemble_step(q, v, !central, block->matrices, rhs);
+    } else {
+      model.assemble_matrices(q, block->matrices);
+    }
+    if (!lean || !block->factor_lean(c.velocity, c.position)) {
+      block->factor(system, c.velocity, c.position, fold_springs);
+    }
+    ++factorization_count_;
+    factored = true;
+  }
+  return factored;
 }
 
 bool Integrator::update_springs(const System& system) {

@@ -68,6 +68,16 @@ struct IntegratorSettings {
   int newton_iterations = 0;
   /// Iterations stop when |delta a| <= newton_tolerance * max(|a|, 1e-300).
   double newton_tolerance = 1e-12;
+  /// The lean step of state-dependent blocks (the default): one Model::assemble_step pass per
+  /// iterate (M, D, K, f_int and g together) and, for blocks without springs on a simplicial
+  /// backend, the step matrix assembled into a pattern analyzed once and factored without
+  /// allocation (lean_step_matrix.h). Newton iterations then keep the step's factor while the
+  /// corrections contract (modified Newton), their residual from Model::add_step_residual
+  /// without assembling: a correction that shrinks by less than kNewtonStallRatio against the
+  /// previous one is discarded and solved again with A factored at its iterate. false: separate
+  /// assembly and force calls, sparse sums and SparseCholesky at every iterate (the reference
+  /// the tests compare the lean step with).
+  bool lean_step = true;
   /// How springs enter the step (implicit_springs.h): low-rank terms on the factor by default.
   SpringTreatment springs = SpringTreatment::kLowRank;
   /// The factorization of each block. SimplicialLDLT by default (the results of every scene
@@ -100,6 +110,10 @@ struct StepSystem {
 
 /// Replaces the default solve a = A^{-1} b of each (Newton) iteration.
 using SolveHook = std::function<void(const StepSystem& step, Eigen::VectorXd& a)>;
+
+/// Modified Newton (IntegratorSettings::lean_step): a correction from a kept factor of A is
+/// accepted while |delta a_k| <= kNewtonStallRatio |delta a_{k-1}|.
+inline constexpr double kNewtonStallRatio = 0.25;
 
 class Integrator {
  public:
@@ -142,7 +156,18 @@ class Integrator {
   bool factor_constant_blocks(const System& system);
   // One solve of A delta = b at the current iterate (re-factoring state-dependent blocks), then
   // a += delta; `with_acceleration`: b subtracts M a (after the first solve or a warm start).
-  void solve_iteration(const System& system, double dt, bool with_acceleration);
+  // `previous_correction` < 0 (the first solve of a step): state-dependent blocks are factored
+  // at the iterate; else lean blocks keep their factor while the correction contracts to
+  // kNewtonStallRatio * previous_correction or better (modified Newton).
+  void solve_iteration(const System& system, double dt, bool with_acceleration,
+                       double previous_correction);
+  // delta = A^{-1} b at the iterate (the hook's solve, if any).
+  void solve_step_system(const System& system, double dt);
+  // Assembles and factors the blocks that kept an earlier factor at this iterate; true if any.
+  bool refactor_reused_blocks(const System& system);
+  // Assembles the state-dependent blocks at the iterate (the fused pass adds their f_int and g
+  // to the right-hand side) and factors them; true if some block was factored.
+  bool assemble_state_dependent_blocks(const System& system, bool refactor);
   // Brings every block's spring terms to the iterate; refactors constant blocks whose folded
   // springs changed (kRefactor). Returns true if A changed.
   bool update_springs(const System& system);

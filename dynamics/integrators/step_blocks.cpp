@@ -28,6 +28,13 @@ SparseMatrix effective_matrix(const ModelMatrices& matrices, double damping_coef
   return result;
 }
 
+// The Error of a block whose step matrix could not be factored.
+Error factorization_error(int model, Eigen::Index unknowns, const Error& error) {
+  return make_error("the effective matrix A = M + c D + c' K of model ", model, " (", unknowns,
+                    " free unknowns) could not be factored (", error.what(),
+                    "): is some free coordinate without mass?");
+}
+
 LowRankSettings block_settings(LowRankSettings settings, bool constant) {
   if (!constant) {
     // Refactored at every iterate, and every term moves with L(q): folding would only refactor
@@ -69,6 +76,7 @@ void StepBlock::factor(const System& system, double damping_coefficient,
   const ModelMatrices& source =
       kronecker ? *system.model(model).scalar_matrices() : full_matrices(system);
   factored = false;
+  lean_active = false;
   ++factorizations;
   if (free.free_count() > 0) {
     SparseMatrix reduced =
@@ -79,9 +87,7 @@ void StepBlock::factor(const System& system, double damping_coefficient,
     try {
       solver.factorize(reduced);
     } catch (const Error& error) {
-      throw make_error("the effective matrix A = M + c D + c' K of model ", model, " (",
-                       reduced.rows(), " free unknowns) could not be factored (", error.what(),
-                       "): is some free coordinate without mass?");
+      throw factorization_error(model, reduced.rows(), error);
     }
   }
   position_coefficient = stiffness_coefficient;
@@ -89,9 +95,32 @@ void StepBlock::factor(const System& system, double damping_coefficient,
   factored = true;
 }
 
+bool StepBlock::factor_lean(double damping_coefficient, double stiffness_coefficient) {
+  if (!lean.fits(matrices) && !lean.analyze(matrices, free)) {
+    return false;
+  }
+  factored = false;
+  lean_active = false;
+  ++factorizations;
+  try {
+    lean.factorize(matrices, damping_coefficient, stiffness_coefficient);
+  } catch (const Error& error) {
+    throw factorization_error(model, free.free_count(), error);
+  }
+  position_coefficient = stiffness_coefficient;
+  velocity_coefficient = damping_coefficient;
+  factored = true;
+  lean_active = true;
+  return true;
+}
+
 void StepBlock::solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
   const auto free_count = static_cast<Eigen::Index>(free.free_count());
   if (free_count == 0) {
+    return;
+  }
+  if (lean_active) {
+    lean.solve(r.data() + velocity_offset, x.data() + velocity_offset);
     return;
   }
   if (kronecker) {

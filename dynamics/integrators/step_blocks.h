@@ -21,6 +21,7 @@
 #include "core/low_rank_update.h"
 #include "dynamics/core/system.h"
 #include "dynamics/integrators/implicit_springs.h"
+#include "dynamics/integrators/lean_step_matrix.h"
 
 namespace dnurbs {
 
@@ -44,6 +45,16 @@ struct StepBlock {
   LowRankUpdate solver;
   BlockSprings springs;
   ModelMatrices matrices;  ///< state-dependent blocks: M, D, K at the current iterate
+  /// State-dependent blocks of a lean step (IntegratorSettings::lean_step): `fused` when the
+  /// iterate's Model::assemble_step (or add_step_residual) put f_int (and g) into the right-hand
+  /// side; `lean_active`
+  /// when solve() uses `lean`, the step matrix factored by LeanStepMatrix.
+  bool fused = false;
+  bool lean_active = false;
+  /// The iterate kept the factor of an earlier one (modified Newton): its right-hand side terms
+  /// came from Model::add_step_residual and `matrices` are those of the factored iterate.
+  bool reused = false;
+  LeanStepMatrix lean;
   Eigen::MatrixXd rhs_free;
 
   /// The block of model `index` of `system`; `settings` choose the factorization (state-dependent
@@ -62,6 +73,11 @@ struct StepBlock {
   /// kRefactor). A block whose factorization throws stays unfactored; the Error names the model.
   void factor(const System& system, double damping_coefficient, double stiffness_coefficient,
               bool fold_springs);
+
+  /// The same factorization by `lean` (state-dependent blocks without springs): analyzes when the
+  /// pattern of `matrices` is new; false, leaving the block as it was, when `lean` cannot take
+  /// that pattern (then factor() serves). The Error of a failed factorization names the model.
+  bool factor_lean(double damping_coefficient, double stiffness_coefficient);
 
   /// x = A_ff^{-1} r on the block's free unknowns, zero on its fixed ones (block segments of the
   /// stacked vectors r and x, both velocity_count of the System).

@@ -185,6 +185,70 @@ TEST(FreeWeightStiffness, InternalForceIsMinusGradientOfEnergyAndEqualsMinusKq) 
   }
 }
 
+// Model::assemble_step, the one pass of free weights (M, D, K, f_int and g from one rational
+// Jacobian per Gauss point), against the separate calls, its force against finite differences
+// of the energy, and Model::add_step_residual against the assembled matrices; with the default
+// weight regularization (its anchor force and energy included) at a state away from the initial
+// one.
+TEST(FreeWeightAssembleStep, OnePassEqualsSeparateCallsAndItsForceIsMinusGradientOfEnergy) {
+  DNurbsCurveMaterial curve_material;
+  curve_material.damping_density = 0.3;
+  curve_material.tension = 1.0;
+  curve_material.rigidity = 0.05;
+  DNurbsSurfaceMaterial surface_material;
+  surface_material.damping_density = 0.3;
+  surface_material.a10 = 1.0;
+  surface_material.a01 = 0.5;
+  surface_material.b20 = surface_material.b11 = surface_material.b02 = 0.1;
+  DNurbsSettings settings;
+  settings.weight_mode = WeightMode::kFree;  // default regularization: inertia and anchor
+  const DNurbsCurve curve(rational_curve(), curve_material, settings);
+  const DNurbsSurface surface(rational_surface(), surface_material, settings);
+  for (const DNurbsModel* model :
+       {static_cast<const DNurbsModel*>(&curve), static_cast<const DNurbsModel*>(&surface)}) {
+    ASSERT_GT(model->weight_stiffness(), 0.0);
+    const Eigen::VectorXd q =
+        model->initial_coordinates() + 0.05 * random_velocity(model->coordinate_count(), 5);
+    const Eigen::VectorXd qd = random_velocity(model->coordinate_count(), 7);
+    ModelMatrices separate;
+    model->assemble_matrices(q, separate);
+    Eigen::VectorXd expected = Eigen::VectorXd::Zero(q.size());
+    model->add_internal_force(q, expected);
+    model->add_inertial_force(q, qd, expected);
+    ModelMatrices fused;
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(q.size());
+    model->assemble_step(q, qd, true, fused, force);
+    // The same products summed in the same order: the matrices agree to the last bit; the force
+    // sums f_int and g per point instead of per pass, rounding only (1e-14 relative).
+    EXPECT_EQ(Eigen::MatrixXd(fused.mass - separate.mass).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(Eigen::MatrixXd(fused.damping - separate.damping).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(Eigen::MatrixXd(fused.stiffness - separate.stiffness).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_LT((force - expected).norm(), 1e-14 * expected.norm());
+    // Without the inertial force: f_int = -dE/dq (E with the weight anchor) by central differences
+    Eigen::VectorXd internal = Eigen::VectorXd::Zero(q.size());
+    model->assemble_step(q, qd, false, fused, internal);
+    const double h = 1e-6;
+    for (int k = 0; k < q.size(); ++k) {
+      Eigen::VectorXd plus = q;
+      Eigen::VectorXd minus = q;
+      plus[k] += h;
+      minus[k] -= h;
+      const double fd = -(model->potential_energy(plus) - model->potential_energy(minus)) / (2 * h);
+      // O(h^2) truncation + O(1e-16 E / h) round-off, E ~ 1.
+      EXPECT_NEAR(internal[k], fd, 1e-8) << model->parametric_dimension() << "-D, coordinate " << k;
+    }
+    EXPECT_GT((force - internal).norm(), 1e-3);  // g is not zero at this velocity
+    // The matrix-free residual of modified Newton: f_int + g - D qd - M a without assembling
+    const Eigen::VectorXd a = random_velocity(model->coordinate_count(), 13);
+    Eigen::VectorXd residual = Eigen::VectorXd::Zero(q.size());
+    model->add_step_residual(q, qd, a, true, residual);
+    const Eigen::VectorXd assembled = expected - separate.damping * qd - separate.mass * a;
+    // Per-point products J^T (J a) against the sums of the assembled entries: rounding, 1e-13
+    // relative
+    EXPECT_LT((residual - assembled).norm(), 1e-13 * assembled.norm());
+  }
+}
+
 // Largest |E(t) - E(0)| of a free, undamped rational curve over t in [0, 0.02] (Newmark). The
 // weights are light coordinates (their mass entries are ~1e-5 against ~0.1 for positions) that
 // the tension drives fast, so the run is short and the steps resolve them.
