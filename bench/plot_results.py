@@ -127,7 +127,7 @@ def free_weights_section(rows):
     """The free-weight step table of free_step_bench (bench/free_weights/README.md)."""
     text = ["\n## Free-weight step\n",
             "free_step_bench: curved clamped bicubic sheets and a curved cubic rod, newmark, "
-            "dt = 0.01. fixed: fixed weights; reference: free weights with "
+            "dt = 0.01 (sheets) and 0.002 (rod). fixed: fixed weights; reference: free weights with "
             "IntegratorSettings::lean_step = false (separate assembly and forces, sparse sums, "
             "SparseCholesky); lean: the lean step; +N: up to 4 Newton iterations (tolerance "
             "1e-10). Ratios and heap allocations per step from one run.\n"]
