@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/interleaved_medians.h"
 #include "dynamics/core/system.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
 #include "dynamics/integrators/integrator.h"
@@ -111,40 +112,14 @@ struct Stepper {
   void step() { integrator.step(system, kDt); }
 };
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t mid = values.size() / 2;
-  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
-
 // Median seconds of one step of each stepper, interleaved (one step of each in turn) so that a
 // slow phase of the shared machine hits them alike; two untimed warm-up steps each.
 std::vector<double> time_steps(std::vector<std::unique_ptr<Stepper>>& steppers, double budget) {
-  std::vector<std::vector<double>> samples(steppers.size());
   for (auto& stepper : steppers) {
     stepper->step();
     stepper->step();
   }
-  double total = 0.0;
-  for (int repeat = 0; repeat < kMaxRepeats; ++repeat) {
-    if (repeat >= kMinRepeats && total > budget * static_cast<double>(steppers.size())) {
-      break;
-    }
-    for (size_t i = 0; i < steppers.size(); ++i) {
-      const auto start = std::chrono::steady_clock::now();
-      steppers[i]->step();
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      samples[i].push_back(seconds);
-      total += seconds;
-    }
-  }
-  std::vector<double> medians;
-  medians.reserve(samples.size());
-  for (const auto& s : samples) {
-    medians.push_back(median(s));
-  }
-  return medians;
+  return interleaved_medians(steppers, budget, kMinRepeats, kMaxRepeats);
 }
 
 std::vector<int> parse_list(const std::string& text) {
