@@ -75,7 +75,7 @@ FreeRowProduct::FreeRowProduct(const std::array<const SparseMatrix*, kMatrices>&
           value = rows_of[sm].valuePtr()[cursor[sm]];
           ++cursor[sm];
         }
-        entry_values_.push_back(value);
+        (m + 1 < kMatrices ? pair_values_ : last_values_).push_back(value);
       }
     }
     row_start_.push_back(static_cast<int>(entry_column_.size()));
@@ -88,19 +88,21 @@ template <int Columns, int Mask>
 void FreeRowProduct::subtract_rows(const std::array<const double*, kMatrices>& x, double* r) const {
   const int k = Columns > 0 ? Columns : columns_;
   const int* column = entry_column_.data();
-  const double* values = entry_values_.data();
+  const double* pairs = pair_values_.data();
+  const double* last = last_values_.data();
   std::array<double, kMaxColumns> sum{};
   for (size_t f = 0; f < rows_.size(); ++f) {
     std::fill(sum.begin(), sum.begin() + k, 0.0);
     for (int p = row_start_[f]; p < row_start_[f + 1]; ++p) {
       const int j = column[p];
-      const double* v = values + static_cast<ptrdiff_t>(p) * kMatrices;
+      const double* v = pairs + static_cast<ptrdiff_t>(p) * (kMatrices - 1);
       for (int m = 0; m < kMatrices; ++m) {
         const bool used = Mask >= 0 ? ((Mask >> m) & 1) != 0 : x[static_cast<size_t>(m)] != nullptr;
         if (used) {
+          const double value = m + 1 < kMatrices ? v[m] : last[p];
           const double* xj = x[static_cast<size_t>(m)] + static_cast<ptrdiff_t>(j) * k;
           for (int c = 0; c < k; ++c) {
-            sum[static_cast<size_t>(c)] += v[m] * xj[c];
+            sum[static_cast<size_t>(c)] += value * xj[c];
           }
         }
       }

@@ -17,8 +17,8 @@ namespace dnurbs {
 /// columns), the layout of a System vector of x, y, z triples when columns = 3).
 ///
 /// The rows of every matrix are merged once (at construction) into one pattern over the free
-/// rows with the kMatrices values of each entry side by side, so that subtract() reads each
-/// column index once for all matrices and each X_m row once per entry. Any matrix may be
+/// rows with the values of each entry side by side, so that subtract() reads each column index
+/// once for all matrices and each X_m row once per entry. Any matrix may be
 /// unsymmetric (its rows are taken, not its columns) or empty (nullptr or no non-zeros: it adds
 /// nothing). Rounding: the sum sum_m A_m(i, :) X_m is formed first and then subtracted, so r
 /// differs from three separate products r -= A_0 X_0; r -= A_1 X_1; ... by rounding only (a few
@@ -54,7 +54,11 @@ class FreeRowProduct {
   std::vector<int> rows_;                  // the free rows
   std::vector<int> row_start_;             // entries of free row k: [row_start_[k], [k + 1])
   std::vector<int> entry_column_;
-  std::vector<double> entry_values_;  // kMatrices per entry: A_0(i, j), A_1(i, j), A_2(i, j)
+  // A_0(i, j), A_1(i, j) side by side per entry (stiffness and damping, read every step) and
+  // A_2(i, j) apart (mass, read only with an acceleration), so that a pass without A_2 does not
+  // stream its values.
+  std::vector<double> pair_values_;
+  std::vector<double> last_values_;
 };
 
 }  // namespace dnurbs
