@@ -52,4 +52,29 @@ std::optional<std::vector<int>> fixed_nodes(const std::vector<int>& fixed, int b
   return nodes;
 }
 
+double kronecker_quadratic_form(const SparseMatrix& scalar,
+                                const Eigen::Ref<const Eigen::VectorXd>& x, int block_size) {
+  if (block_size < 1) {
+    throw make_error("Kronecker block size ", block_size, " must be at least 1");
+  }
+  if (scalar.rows() != scalar.cols() || x.size() != scalar.rows() * block_size) {
+    throw make_error("Kronecker quadratic form: the scalar matrix is ", scalar.rows(), " by ",
+                     scalar.cols(), ", the vector has ", x.size(), " entries (block size ",
+                     block_size, ")");
+  }
+  double sum = 0.0;
+  for (Eigen::Index j = 0; j < scalar.outerSize(); ++j) {
+    const double* xj = x.data() + j * block_size;
+    for (SparseMatrix::InnerIterator it(scalar, j); it; ++it) {
+      const double* xi = x.data() + it.row() * block_size;
+      double dot = 0.0;
+      for (int c = 0; c < block_size; ++c) {
+        dot += xi[c] * xj[c];
+      }
+      sum += it.value() * dot;
+    }
+  }
+  return sum;
+}
+
 }  // namespace dnurbs

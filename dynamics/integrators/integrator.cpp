@@ -10,10 +10,6 @@ namespace dnurbs {
 
 namespace {
 
-using RowMatrixX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-using NodeMap = Eigen::Map<RowMatrixX3>;
-using ConstNodeMap = Eigen::Map<const RowMatrixX3>;
-
 // The blocks' factorization: the integrator's Cholesky backend under the spring terms.
 LowRankSettings low_rank_settings(const IntegratorSettings& settings) {
   LowRankSettings result;
@@ -134,17 +130,10 @@ void subtract_block_terms(const System& system, bool with_acceleration, Integrat
     const Eigen::Index vo = block->velocity_offset;
     const Eigen::Index vc = block->velocity_count;
     if (block->kronecker) {
-      const ModelMatrices& scalar = *system.model(block->model).scalar_matrices();
-      const Eigen::Index nodes = vc / 3;
-      NodeMap R(w.rhs.data() + vo, nodes, 3);
-      R.noalias() -=
-          scalar.stiffness * ConstNodeMap(w.q_iter.data() + block->coordinate_offset, nodes, 3);
-      if (scalar.damping.nonZeros() > 0) {
-        R.noalias() -= scalar.damping * ConstNodeMap(w.v_iter.data() + vo, nodes, 3);
-      }
-      if (with_acceleration) {
-        R.noalias() -= scalar.mass * ConstNodeMap(w.a.data() + vo, nodes, 3);
-      }
+      // S_K Q + S_D V (+ S_M A) in one pass over the free nodes (fixed rows are not solved)
+      block->residual.subtract({w.q_iter.data() + block->coordinate_offset, w.v_iter.data() + vo,
+                                with_acceleration ? w.a.data() + vo : nullptr},
+                               w.rhs.data() + vo);
     } else {
       system.model(block->model)
           .add_internal_force(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
@@ -199,6 +188,11 @@ int Integrator::block_factorization_count(int model) const {
                      " blocks of the last stepped system");
   }
   return blocks.blocks[static_cast<size_t>(model)]->factorizations;
+}
+
+CholeskyBackend Integrator::block_backend(int model) const {
+  block_factorization_count(model);  // checks the index
+  return work_->blocks.blocks[static_cast<size_t>(model)]->solver.cholesky().backend();
 }
 
 void Integrator::initial_acceleration(System& system) {

@@ -53,6 +53,11 @@ StepBlock::StepBlock(const System& system, int index, const LowRankSettings& set
               velocity_count % 3 == 0 && coordinate_count == velocity_count && nodes;
   free = kronecker ? FreeCoordinates(velocity_count / 3, *nodes)
                    : FreeCoordinates(velocity_count, fixed);
+  if (kronecker) {
+    const ModelMatrices& scalar = *m.scalar_matrices();
+    residual =
+        FreeRowProduct({&scalar.stiffness, &scalar.damping, &scalar.mass}, free.free_unknowns(), 3);
+  }
   solver = LowRankUpdate(block_settings(settings, constant));
 }
 

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "core/fixed_coordinates.h"
+#include "core/free_row_product.h"
 #include "core/low_rank_update.h"
 #include "dynamics/core/system.h"
 #include "dynamics/integrators/implicit_springs.h"
@@ -44,6 +45,9 @@ struct StepBlock {
   LowRankUpdate solver;
   BlockSprings springs;
   ModelMatrices matrices;  ///< state-dependent blocks: M, D, K at the current iterate
+  /// Kronecker blocks: b -= S_K Q + S_D V + S_M A on the free nodes, one pass over the scalar
+  /// matrices' shared pattern (matrices in that order; node by 3 arrays).
+  FreeRowProduct residual;
   Eigen::MatrixXd rhs_free;
 
   /// The block of model `index` of `system`; `settings` choose the factorization (state-dependent

@@ -1,5 +1,6 @@
 // The Kronecker layout: S (x) I_b entry by entry against the dense product, and the fixed nodes
-// of a list of fixed coordinates.
+// of a list of fixed coordinates, and the quadratic form x^T (S (x) I_b) x against the expanded
+// matrix's.
 
 #include "core/kronecker.h"
 
@@ -34,6 +35,29 @@ TEST(KroneckerIdentity, EqualsTheDenseKroneckerProduct) {
     EXPECT_TRUE(expanded.isCompressed());
   }
   EXPECT_THROW(kronecker_identity(scalar, 0), Error);
+}
+
+TEST(KroneckerQuadraticForm, EqualsTheExpandedQuadraticForm) {
+  SparseMatrix scalar(4, 4);
+  scalar.insert(0, 0) = 2.0;
+  scalar.insert(1, 0) = -1.5;
+  scalar.insert(0, 1) = -1.5;
+  scalar.insert(1, 1) = 3.0;
+  scalar.insert(3, 2) = 0.25;
+  scalar.insert(2, 3) = 0.25;
+  scalar.insert(2, 2) = 1.0;
+  scalar.insert(3, 3) = 0.5;
+  scalar.makeCompressed();
+  for (const int b : {1, 3}) {
+    const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(4 * b, -1.0, 2.0);
+    const double expected = x.dot(kronecker_identity(scalar, b) * x);
+    // The same products summed in another order: rounding only, |terms| <= 12
+    EXPECT_NEAR(kronecker_quadratic_form(scalar, x, b), expected, 1e-14) << "b = " << b;
+  }
+  // By hand for b = 1 and x = (1, 1, 0, 0): 2 - 1.5 - 1.5 + 3 = 2
+  EXPECT_DOUBLE_EQ(kronecker_quadratic_form(scalar, Eigen::Vector4d(1, 1, 0, 0), 1), 2.0);
+  EXPECT_THROW(kronecker_quadratic_form(scalar, Eigen::VectorXd::Zero(11), 3), Error);
+  EXPECT_THROW(kronecker_quadratic_form(scalar, Eigen::VectorXd::Zero(4), 0), Error);
 }
 
 TEST(FixedNodes, WholeNodesAreFoundAndPartialOnesRefused) {
