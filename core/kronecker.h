@@ -24,6 +24,14 @@ SparseMatrix kronecker_identity(const SparseMatrix& scalar, int block_size);
 double kronecker_quadratic_form(const SparseMatrix& scalar,
                                 const Eigen::Ref<const Eigen::VectorXd>& x, int block_size);
 
+/// (x - y)^T (S (x) I_b) (x - y) in one pass over S without forming x - y: the energy of a
+/// displacement from a reference state y. Throws Error as kronecker_quadratic_form, or if y's size
+/// differs from x's.
+double kronecker_quadratic_form_of_difference(const SparseMatrix& scalar,
+                                              const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              const Eigen::Ref<const Eigen::VectorXd>& y,
+                                              int block_size);
+
 /// The nodes of a sorted list of fixed velocity indices when it consists of whole nodes (every
 /// fixed node has all of its b coordinates b k .. b k + b - 1 fixed), ascending; nullopt if some
 /// node is only partly fixed. Throws Error if block_size < 1.

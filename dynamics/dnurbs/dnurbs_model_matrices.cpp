@@ -204,17 +204,10 @@ void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
       [](int /*element*/) {});
 }
 
-double DNurbsModel::potential_energy(ConstVectorRef q) const {
+double DNurbsModel::quadrature_potential_energy(ConstVectorRef q) const {
   const int order = stiffness_order();
   if (order == 0) {
     return 0.0;
-  }
-  if (mode_ == WeightMode::kFixed) {
-    // Fixed weights: x^alpha = J_alpha q with a constant J and the constant K holds the same
-    // quadrature sum, so E = (1/2) q^T K q = (1/2) sum_c Q_c^T S_K Q_c over the x, y, z columns
-    // Q_c (no basis evaluation; equal to the quadrature sum up to rounding).
-    check_coordinates(q);
-    return 0.5 * kronecker_quadratic_form(scalar_.stiffness, q, 3);
   }
   double energy = 0.0;
   for_each_quadrature_point(

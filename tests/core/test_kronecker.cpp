@@ -60,6 +60,28 @@ TEST(KroneckerQuadraticForm, EqualsTheExpandedQuadraticForm) {
   EXPECT_THROW(kronecker_quadratic_form(scalar, Eigen::VectorXd::Zero(4), 0), Error);
 }
 
+TEST(KroneckerQuadraticForm, OfADifferenceEqualsTheFormOfTheSubtractedVector) {
+  SparseMatrix scalar(3, 3);
+  scalar.insert(0, 0) = 4.0;
+  scalar.insert(1, 0) = -2.0;
+  scalar.insert(0, 1) = -2.0;
+  scalar.insert(1, 1) = 5.0;
+  scalar.insert(2, 2) = 0.5;
+  scalar.makeCompressed();
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(6, -1.0, 1.5);
+  const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(6, 0.25, -0.5);
+  // The same products of the same differences, summed in the same order: equal to the last bit
+  EXPECT_EQ(kronecker_quadratic_form_of_difference(scalar, x, y, 2),
+            kronecker_quadratic_form(scalar, x - y, 2));
+  // By hand for b = 1, x - y = (1, 1, 2): 4 - 2 - 2 + 5 + 0.5 * 4 = 7
+  EXPECT_DOUBLE_EQ(kronecker_quadratic_form_of_difference(scalar, Eigen::Vector3d(3, 2, 2),
+                                                          Eigen::Vector3d(2, 1, 0), 1),
+                   7.0);
+  EXPECT_THROW(kronecker_quadratic_form_of_difference(scalar, x, Eigen::VectorXd::Zero(5), 2),
+               Error);
+  EXPECT_THROW(kronecker_quadratic_form_of_difference(scalar, x, y, 3), Error);
+}
+
 TEST(FixedNodes, WholeNodesAreFoundAndPartialOnesRefused) {
   EXPECT_EQ(fixed_nodes({}, 3), std::vector<int>());
   EXPECT_EQ(fixed_nodes({3, 4, 5, 9, 10, 11}, 3), (std::vector<int>{1, 3}));
