@@ -72,9 +72,11 @@ struct IntegratorSettings {
   SpringTreatment springs = SpringTreatment::kLowRank;
   /// The factorization of each block: kAutomatic by default, SimplicialLDLT below
   /// kDefaultSupernodalThreshold free unknowns (scalar unknowns, i.e. free nodes, for a
-  /// Kronecker block) and CHOLMOD's supernodal factorization (OpenBLAS held to one thread,
-  /// core/cholmod_factor.h) from it on, where it factors and solves faster (bench/solver). The
-  /// two backends give the same solution up to rounding (about 1e-15 relative per solve).
+  /// Kronecker block; kDefaultConstantSupernodalThreshold for a block with constant matrices,
+  /// factored once) and CHOLMOD's supernodal factorization (OpenBLAS held to one thread,
+  /// core/cholmod_factor.h) from it on, where it factors and solves faster (bench/solver,
+  /// bench/floor). The two backends give the same solution up to rounding (about 1e-15 relative
+  /// per solve).
   SparseCholeskySettings cholesky{CholeskyBackend::kAutomatic, kDefaultSupernodalThreshold};
 };
 

@@ -29,7 +29,10 @@ SparseMatrix effective_matrix(const ModelMatrices& matrices, double damping_coef
 }
 
 LowRankSettings block_settings(LowRankSettings settings, bool constant) {
-  if (!constant) {
+  if (constant) {
+    // Factored once, solved every step: the solve-only crossover (core/sparse_cholesky.h)
+    settings.cholesky.supernodal_threshold = settings.cholesky.constant_supernodal_threshold;
+  } else {
     // Refactored at every iterate, and every term moves with L(q): folding would only refactor
     // once more.
     settings.max_woodbury_terms = std::numeric_limits<int>::max();

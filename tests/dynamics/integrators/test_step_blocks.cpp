@@ -131,16 +131,42 @@ TEST(StepBlock, ThreeColumnSolveEqualsCoordinateByCoordinateSolve) {
 TEST(StepBlock, DefaultBackendFollowsTheFreeNodeCount) {
   EXPECT_EQ(IntegratorSettings{}.cholesky.backend, CholeskyBackend::kAutomatic);
   EXPECT_EQ(IntegratorSettings{}.cholesky.supernodal_threshold, kDefaultSupernodalThreshold);
-  // 8 x 8 control points: 36 free nodes; 17 x 17: 225 free nodes (>= 200)
-  for (const int spans : {5, 14}) {
+  EXPECT_EQ(IntegratorSettings{}.cholesky.constant_supernodal_threshold,
+            kDefaultConstantSupernodalThreshold);
+  // Constant matrices (fixed weights), factored once: the constant threshold (64). 8 x 8 control
+  // points: 36 free nodes; 11 x 11: 81; 17 x 17: 225.
+  for (const int spans : {5, 8, 14}) {
     System system = clamped_sheet(spans);
     Integrator integrator;
     integrator.step(system, 0.01);
     const int free_nodes = (spans + 1) * (spans + 1);
-    EXPECT_EQ(integrator.block_backend(0), free_nodes >= kDefaultSupernodalThreshold
+    EXPECT_EQ(integrator.block_backend(0), free_nodes >= kDefaultConstantSupernodalThreshold
                                                ? CholeskyBackend::kCholmodSupernodal
                                                : CholeskyBackend::kSimplicialLdlt)
         << free_nodes << " free nodes";
+  }
+  // State-dependent matrices (free weights), refactored every step: the general threshold
+  // (200). Every weight fixed, 3 free unknowns per free node: 108 (8 x 8 control points, above
+  // the constant threshold) and 243 (11 x 11).
+  for (const int spans : {5, 8}) {
+    DNurbsSurfaceMaterial material;
+    material.a10 = material.a01 = 1.0;
+    DNurbsSettings settings;
+    settings.weight_mode = WeightMode::kFree;
+    settings.weight_inertia = 1e-2;
+    DNurbsSurface sheet(test::flat_patch(3, 3, spans, spans), material, settings);
+    sheet.fix_border();
+    for (int i = 0; i < sheet.control_point_count(); ++i) {
+      sheet.fix_weight(i);
+    }
+    System system(sheet);
+    Integrator integrator;
+    integrator.step(system, 0.01);
+    const int free_unknowns = 3 * (spans + 1) * (spans + 1);
+    EXPECT_EQ(integrator.block_backend(0), free_unknowns >= kDefaultSupernodalThreshold
+                                               ? CholeskyBackend::kCholmodSupernodal
+                                               : CholeskyBackend::kSimplicialLdlt)
+        << free_unknowns << " free unknowns";
   }
 }
 
