@@ -142,7 +142,8 @@ def floor_section(rows, run_rows):
     """The solver-floor tables of floor_bench (bench/floor/README.md)."""
     text = ["\n## Solver floor\n",
             "floor_bench: Newmark step (dt = 0.01) of a clamped bicubic sheet with a point force, "
-            "integrator defaults (CHOLMOD supernodal from 200 free nodes on, SimplicialLDLT "
+            "integrator defaults (constant step matrix: CHOLMOD supernodal from 64 free nodes on, "
+            "SimplicialLDLT "
             "below), against one CHOLMOD three-column solve of the same scalar step matrix; at the "
             "largest size also the step with SimplicialLDLT. Process CPU seconds (the shared machine's wall "
             "times vary 5x), medians of interleaved calls, ratios "
