@@ -1,0 +1,180 @@
+// dnurbs.Integrator (dynamics/integrators/integrator.h), solve_static_equilibrium
+// (dynamics/integrators/static_equilibrium.h), dnurbs.TargetTrajectory
+// (constraints/target_trajectory.h) and dnurbs.ConstraintSolver with the point constraints
+// (constraints/constraint_solver.h, constraints/point_constraints.h).
+
+#include <pybind11/stl.h>
+
+#include "constraints/constraint_solver.h"
+#include "constraints/point_constraints.h"
+#include "constraints/target_trajectory.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/integrators/static_equilibrium.h"
+#include "python/src/bindings.h"
+#include "python/src/numpy_arrays.h"
+
+namespace dnurbs::python {
+
+namespace {
+
+Integrator make_integrator(const std::string& scheme, int newton_iterations,
+                           double newton_tolerance, double newmark_beta, double newmark_gamma) {
+  IntegratorSettings settings;
+  settings.scheme = parse_integrator_scheme(scheme);
+  settings.newton_iterations = newton_iterations;
+  settings.newton_tolerance = newton_tolerance;
+  settings.newmark_beta = newmark_beta;
+  settings.newmark_gamma = newmark_gamma;
+  return Integrator(settings);
+}
+
+TargetTrajectory keyframes(const py::object& times, const py::object& points) {
+  const std::vector<double> keys = list_from_array(times, "times");
+  const Eigen::MatrixXd values =
+      matrix_from_array(points, "points", static_cast<long>(keys.size()), 3);
+  std::vector<Eigen::Vector3d> positions;
+  for (Eigen::Index i = 0; i < values.rows(); ++i) {
+    positions.emplace_back(values.row(i).transpose());
+  }
+  return TargetTrajectory::keyframes(keys, positions);
+}
+
+py::dict report_dict(const ConstraintReport& report) {
+  py::dict result;
+  result["row_count"] = report.row_count;
+  result["rank"] = report.rank;
+  result["rank_deficient"] = report.rank_deficient;
+  result["involved"] = report.involved;
+  result["residual"] = report.residual;
+  result["message"] = report.message;
+  return result;
+}
+
+void bind_constraint_solver(py::module_& module) {
+  py::class_<ConstraintSolver>(
+      module, "ConstraintSolver",
+      "Holonomic constraints C(q, t) = 0 on a System, stabilized with Baumgarte's method "
+      "(alpha, beta; beta < 0: beta = alpha) and solved with the step (Terzopoulos, Deformable "
+      "Models, eqs. 1.39-1.40).")
+      .def(py::init<>())
+      .def(
+          "add_point_target",
+          [](ConstraintSolver& self, const System& system, int model, const py::object& u,
+             const TargetTrajectory& target, double alpha, double beta) {
+            return self.add(system, PointTargetConstraint(model, material_parameter(u), target),
+                            {alpha, beta});
+          },
+          py::arg("system"), py::arg("model"), py::arg("u"), py::arg("target"),
+          py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
+          "x(u) of `model` follows the TargetTrajectory `target`; returns the index.")
+      .def(
+          "add_point_to_point",
+          [](ConstraintSolver& self, const System& system, int model_a, const py::object& u_a,
+             int model_b, const py::object& u_b, double alpha, double beta) {
+            return self.add(system,
+                            PointToPointConstraint(model_a, material_parameter(u_a), model_b,
+                                                   material_parameter(u_b)),
+                            {alpha, beta});
+          },
+          py::arg("system"), py::arg("model_a"), py::arg("u_a"), py::arg("model_b"), py::arg("u_b"),
+          py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
+          "x_a(u_a) = x_b(u_b) between two models.")
+      .def(
+          "add_control_point",
+          [](ConstraintSolver& self, const System& system, int model, int control_point,
+             const py::object& target, double alpha, double beta) {
+            return self.add(
+                system,
+                ControlPointConstraint(model, control_point,
+                                       matrix_from_array(target, "target", 1, 3, true).row(0)),
+                {alpha, beta});
+          },
+          py::arg("system"), py::arg("model"), py::arg("control_point"), py::arg("target"),
+          py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
+          "Control point `control_point` of `model` held at `target` (3,).")
+      .def_property_readonly("constraint_count", &ConstraintSolver::constraint_count)
+      .def_property_readonly("row_count", &ConstraintSolver::row_count)
+      .def(
+          "step",
+          [](ConstraintSolver& self, Integrator& integrator, System& system, double dt, int count) {
+            for (int i = 0; i < count; ++i) {
+              self.step(integrator, system, dt);
+            }
+          },
+          py::arg("integrator"), py::arg("system"), py::arg("dt"), py::arg("count") = 1,
+          "Advances `system` `count` steps of dt with every constraint enforced.")
+      .def(
+          "violations",
+          [](const ConstraintSolver& self, const System& system) {
+            return array_from_vector(self.violations(system));
+          },
+          py::arg("system"), "|C_i| per constraint at the current state, (#constraints,).")
+      .def_property_readonly(
+          "multipliers",
+          [](const ConstraintSolver& self) { return array_from_vector(self.multipliers()); },
+          "Lagrange multipliers of the last step, (row_count,).")
+      .def(
+          "last_report",
+          [](const ConstraintSolver& self) { return report_dict(self.last_report()); },
+          "What the last step found about the rows: a dict row_count, rank, rank_deficient, "
+          "involved, residual, message.");
+}
+
+}  // namespace
+
+void bind_integrator(py::module_& module) {
+  py::class_<Integrator>(
+      module, "Integrator",
+      "Time integration of M qdd + D qd + K q = f + g (central: Terzopoulos, Deformable Models, "
+      "eq. 1.13; implicit-euler; newmark: average acceleration). Constant blocks are factored "
+      "once; springs are implicit.")
+      .def(py::init(&make_integrator), py::arg("scheme") = "newmark",
+           py::arg("newton_iterations") = 0, py::arg("newton_tolerance") = 1e-12,
+           py::arg("newmark_beta") = 0.25, py::arg("newmark_gamma") = 0.5,
+           "scheme: 'central', 'implicit-euler' or 'newmark'.")
+      .def(
+          "step",
+          [](Integrator& self, System& system, double dt, int count) {
+            for (int i = 0; i < count; ++i) {
+              self.step(system, dt);
+            }
+          },
+          py::arg("system"), py::arg("dt"), py::arg("count") = 1,
+          "Advances `system` `count` steps of dt (the loop runs in C++). Raises dnurbs.Error "
+          "(state untouched) for dt <= 0 or a non-finite state.")
+      .def_property_readonly(
+          "scheme",
+          [](const Integrator& self) { return std::string(to_string(self.settings().scheme)); })
+      .def_property_readonly("last_newton_iterations", &Integrator::last_newton_iterations)
+      .def_property_readonly("factorization_count", &Integrator::factorization_count,
+                             "Block factorizations of the step matrix so far.");
+  module.def("solve_static_equilibrium", &solve_static_equilibrium, py::arg("system"),
+             "Solves K q = f on the free coordinates (springs exact), sets q with zero "
+             "velocity. Constant-matrix systems only; raises dnurbs.Error if K_ff is singular.");
+  py::class_<TargetTrajectory>(module, "TargetTrajectory",
+                               "A moving target point x(t) with velocity and acceleration.")
+      .def_static(
+          "fixed",
+          [](const py::object& point) {
+            return TargetTrajectory::fixed(matrix_from_array(point, "point", 1, 3, true).row(0));
+          },
+          py::arg("point"), "A target at rest at `point` (3,).")
+      .def_static("keyframes", &keyframes, py::arg("times"), py::arg("points"),
+                  "Keyframes: times (k,) strictly increasing, points (k, 3), interpolated by a "
+                  "natural cubic spline; before the first and after the last the target rests.")
+      .def(
+          "__call__",
+          [](const TargetTrajectory& self, double time) {
+            return array_from_vector(self.position(time));
+          },
+          py::arg("t"), "x(t), (3,).")
+      .def(
+          "velocity",
+          [](const TargetTrajectory& self, double time) {
+            return array_from_vector(self.velocity(time));
+          },
+          py::arg("t"), "xdot(t), (3,).");
+  bind_constraint_solver(module);
+}
+
+}  // namespace dnurbs::python

@@ -1,0 +1,46 @@
+#pragma once
+// The parts of the dnurbs Python module: each bind_* function adds one concept's classes and
+// functions (with their docstrings) to the module `_dnurbs` (python/src/module.cpp).
+
+#include <pybind11/pybind11.h>
+
+namespace dnurbs {
+struct Checkpoint;
+}  // namespace dnurbs
+
+namespace dnurbs::python {
+
+namespace py = pybind11;
+
+/// dnurbs.Error (a ValueError) and dnurbs.SimulationDiverged; the translation of dnurbs::Error.
+void bind_errors(py::module_& module);
+/// dnurbs.KnotVector and dnurbs.Direction.
+void bind_knot_vector(py::module_& module);
+/// dnurbs.NurbsCurve with knot operations and closest points.
+void bind_nurbs_curve(py::module_& module);
+/// dnurbs.NurbsSurface with knot operations and closest points.
+void bind_nurbs_surface(py::module_& module);
+/// The exact primitive shapes (circles, spheres, tori, surfaces of revolution).
+void bind_primitive_shapes(py::module_& module);
+/// dnurbs.TriangleMesh, export_meshes and import_meshes.
+void bind_triangle_mesh(py::module_& module);
+/// dnurbs.Scene, read_scene, parse_scene and read_checkpoint.
+void bind_scene(py::module_& module);
+/// dnurbs.SceneSimulation (step, run, state, samples, meshes).
+void bind_scene_simulation(py::module_& module);
+
+/// dnurbs.Model (every model type), DNurbsCurve, DNurbsSurface and model_from_json.
+void bind_model(py::module_& module);
+/// dnurbs.System with forces and springs.
+void bind_system(py::module_& module);
+/// dnurbs.Integrator, solve_static_equilibrium, TargetTrajectory and ConstraintSolver.
+void bind_integrator(py::module_& module);
+
+/// fit_dnurbs_surface, fit_dnurbs_curve, their starts and minimize_energy.
+void bind_design(py::module_& module);
+
+/// A checkpoint as a dict of Python values and arrays (scene, scene_hash, step, time,
+/// coordinates, velocities, accelerations_valid, accelerations).
+py::dict checkpoint_dict(const Checkpoint& checkpoint);
+
+}  // namespace dnurbs::python
