@@ -56,7 +56,7 @@ void bind_constraint_solver(py::module_& module) {
       "Holonomic constraints C(q, t) = 0 on a System, stabilized with Baumgarte's method "
       "(alpha, beta; beta < 0: beta = alpha) and solved with the step (Terzopoulos, Deformable "
       "Models, eqs. 1.39-1.40).")
-      .def(py::init<>())
+      .def(py::init<>(), "An empty set of constraints.")
       .def(
           "add_point_target",
           [](ConstraintSolver& self, const System& system, int model, const py::object& u,
@@ -92,8 +92,10 @@ void bind_constraint_solver(py::module_& module) {
           py::arg("system"), py::arg("model"), py::arg("control_point"), py::arg("target"),
           py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
           "Control point `control_point` of `model` held at `target` (3,).")
-      .def_property_readonly("constraint_count", &ConstraintSolver::constraint_count)
-      .def_property_readonly("row_count", &ConstraintSolver::row_count)
+      .def_property_readonly("constraint_count", &ConstraintSolver::constraint_count,
+                             "Number of constraints.")
+      .def_property_readonly("row_count", &ConstraintSolver::row_count,
+                             "Number of constraint rows (3 per point constraint).")
       .def(
           "step",
           [](ConstraintSolver& self, Integrator& integrator, System& system, double dt, int count) {
@@ -144,8 +146,10 @@ void bind_integrator(py::module_& module) {
           "(state untouched) for dt <= 0 or a non-finite state.")
       .def_property_readonly(
           "scheme",
-          [](const Integrator& self) { return std::string(to_string(self.settings().scheme)); })
-      .def_property_readonly("last_newton_iterations", &Integrator::last_newton_iterations)
+          [](const Integrator& self) { return std::string(to_string(self.settings().scheme)); },
+          "The scheme: central, implicit-euler or newmark.")
+      .def_property_readonly("last_newton_iterations", &Integrator::last_newton_iterations,
+                             "Newton iterations of the last step (0: linearly implicit).")
       .def_property_readonly("factorization_count", &Integrator::factorization_count,
                              "Block factorizations of the step matrix so far.");
   module.def("solve_static_equilibrium", &solve_static_equilibrium, py::arg("system"),

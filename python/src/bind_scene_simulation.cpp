@@ -31,34 +31,22 @@ py::dict sample_dict(const SceneSample& sample) {
 }
 
 py::dict run_result_dict(const SceneRunResult& run) {
-  py::dict result;
-  result["steps_done"] = run.steps_done;
-  result["total_steps"] = run.total_steps;
-  result["diverged"] = run.diverged;
-  result["stopped"] = run.stopped;
-  result["message"] = run.message;
-  result["frames_written"] = run.frames_written;
-  result["log"] = run.log;
-  result["checkpoint"] = run.checkpoint;
-  result["final_mesh"] = run.final_mesh;
-  result["shape_files"] = run.shape_files;
-  return result;
+  return py::dict(py::arg("steps_done") = run.steps_done, py::arg("total_steps") = run.total_steps,
+                  py::arg("diverged") = run.diverged, py::arg("stopped") = run.stopped,
+                  py::arg("message") = run.message, py::arg("frames_written") = run.frames_written,
+                  py::arg("log") = run.log, py::arg("checkpoint") = run.checkpoint,
+                  py::arg("final_mesh") = run.final_mesh, py::arg("shape_files") = run.shape_files);
 }
 
 py::dict cost_dict(const SceneModelCost& cost) {
-  py::dict result;
-  result["name"] = cost.name;
-  result["type"] = cost.type;
-  result["coordinates"] = cost.coordinates;
-  result["velocities"] = cost.velocities;
-  result["fixed"] = cost.fixed;
-  result["constant_matrices"] = cost.constant_matrices;
-  result["kronecker_block"] = cost.kronecker_block;
-  result["matrix_non_zeros"] = cost.matrix_non_zeros;
-  result["factor_non_zeros"] = cost.factor_non_zeros;
-  result["solve_work"] = cost.solve_work;
-  result["automatic_choice"] = cost.automatic_choice;
-  return result;
+  return py::dict(
+      py::arg("name") = cost.name, py::arg("type") = cost.type,
+      py::arg("coordinates") = cost.coordinates, py::arg("velocities") = cost.velocities,
+      py::arg("fixed") = cost.fixed, py::arg("constant_matrices") = cost.constant_matrices,
+      py::arg("kronecker_block") = cost.kronecker_block,
+      py::arg("matrix_non_zeros") = cost.matrix_non_zeros,
+      py::arg("factor_non_zeros") = cost.factor_non_zeros, py::arg("solve_work") = cost.solve_work,
+      py::arg("automatic_choice") = cost.automatic_choice);
 }
 
 // Model i's exact shape as a NurbsCurve or NurbsSurface, or None.

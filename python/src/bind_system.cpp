@@ -65,7 +65,7 @@ void bind_system_state(py::class_<System>& system) {
       .def("add_model", &System::add_model, py::arg("model"),
            "Adds a copy of `model` with its initial coordinates and zero velocity; returns its "
            "index.")
-      .def_property_readonly("model_count", &System::model_count)
+      .def_property_readonly("model_count", &System::model_count, "Number of models.")
       .def(
           "model", [](const System& self, int i) { return self.model(i).clone(); }, py::arg("i"),
           "A copy of model i (boundary conditions are set before add_model).")
@@ -73,8 +73,8 @@ void bind_system_state(py::class_<System>& system) {
            "Offset of model i's coordinates in the stacked q.")
       .def("velocity_offset", &System::velocity_offset, py::arg("i"),
            "Offset of model i's velocities in the stacked velocities.")
-      .def_property_readonly("time", &System::time)
-      .def("set_time", &System::set_time, py::arg("time"))
+      .def_property_readonly("time", &System::time, "The current time t.")
+      .def("set_time", &System::set_time, py::arg("time"), "Sets the current time.")
       .def_property_readonly(
           "coordinates", [](const System& self) { return array_from_vector(self.coordinates()); },
           "The stacked coordinates q, (n,): a new array.")
@@ -177,7 +177,8 @@ void bind_system_forces(py::class_<System>& system) {
           py::arg("end") = kForever,
           "The force f (3,) or f(t) on the position of each listed control point of model i.")
       .def("clear_forces", &System::clear_forces, "Removes every applied force (not springs).")
-      .def_property_readonly("force_count", &System::force_count)
+      .def_property_readonly("force_count", &System::force_count,
+                             "Number of applied forces (indices of the add_*force calls).")
       .def(
           "add_spring",
           [](System& self, int i, const py::object& u, const py::object& target, double stiffness,
@@ -199,8 +200,9 @@ void bind_system_forces(py::class_<System>& system) {
           "Replaces spring `id` (a new material point, target and stiffness); the integrator "
           "updates its factor instead of refactoring.")
       .def("remove_spring", &System::remove_spring, py::arg("id"), "Detaches spring `id`.")
-      .def("has_spring", &System::has_spring, py::arg("id"))
-      .def("spring_model", &System::spring_model, py::arg("id"))
+      .def("has_spring", &System::has_spring, py::arg("id"),
+           "True if spring `id` was added and not removed.")
+      .def("spring_model", &System::spring_model, py::arg("id"), "The model of spring `id`.")
       .def("spring_state", &spring_state_dict, py::arg("id"), py::arg("time") = py::none(),
            "Spring `id` at `time` (None: now): a dict parameter (2,), target (3,), stiffness.");
 }
