@@ -36,8 +36,7 @@ VectorOfTime vector_of_time(const py::object& value, const std::string& name) {
       return vector3(function(time), name + "(t)");
     };
   }
-  const Eigen::Vector3d constant = vector3(value, name);
-  return [constant](double) { return constant; };
+  return [constant = vector3(value, name)](double) -> Eigen::Vector3d { return constant; };
 }
 
 Spring make_spring(const py::object& u, const py::object& target, double stiffness, double start,

@@ -56,8 +56,9 @@ Eigen::MatrixXd matrix_from_array(const py::object& value, const std::string& na
   const bool matches =
       values.ndim() == 2 && values.shape(1) == columns && (rows < 0 || values.shape(0) == rows);
   if (!one_row && !matches) {
-    throw make_error(name, " must have shape ", expected_text(rows, columns), ", got ",
-                     shape_text(values));
+    const std::string expected =
+        one_row_ok ? "(" + std::to_string(columns) + ",)" : expected_text(rows, columns);
+    throw make_error(name, " must have shape ", expected, ", got ", shape_text(values));
   }
   if (one_row) {
     Eigen::MatrixXd matrix(1, columns);

@@ -188,3 +188,25 @@ def test_control_point_constraint_is_held():
     assert solver.violations(system).max() < 1e-8
     assert system.position(0, [0.5, 0.5])[2] < -1e-3  # the rest sags under gravity
     assert solver.last_report()["rank"] == 6
+
+
+def test_errors_in_python_force_functions_propagate():
+    def failing(time):
+        raise ZeroDivisionError("from the force function")
+
+    for bad, error, message in [(failing, ZeroDivisionError, "from the force function"),
+                                (lambda t: [1.0, 2.0], dnurbs.Error,
+                                 "force\\(t\\) must have shape \\(3,\\), got \\(2,\\)"),
+                                (lambda t: [np.nan, 0.0, 0.0], dnurbs.Error, "nan")]:
+        system = dnurbs.System()
+        system.add_model(sheet())
+        system.add_point_force(0, [0.5, 0.5], bad)
+        before = system.coordinates
+        with pytest.raises(error, match=message):
+            dnurbs.Integrator().step(system, 0.01)
+        np.testing.assert_array_equal(system.coordinates, before)  # the state is untouched
+    system = dnurbs.System()
+    system.add_model(sheet())
+    system.add_spring(0, [0.5, 0.5], lambda t: [np.nan, 0.0, 0.0], 1.0)
+    with pytest.raises(dnurbs.Error, match="spring 0 at t = 0: target \\(nan, 0, 0\\) is not finite"):
+        dnurbs.Integrator().step(system, 0.01)
