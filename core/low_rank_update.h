@@ -131,7 +131,9 @@ class LowRankUpdate {
   Eigen::MatrixXd w_;          // n by capacity: A_f^{-1} u_i (A_f: the factored matrix)
   Eigen::MatrixXd gram_;       // capacity by capacity: U^T W
   Eigen::MatrixXd capacitance_, rhs_small_;
-  Eigen::LLT<Eigen::MatrixXd> capacitance_llt_;
+  // Computed on the empty matrix so that its status is defined before the first capacitance
+  // (Eigen's default constructor leaves it unset, and moving the object reads it).
+  Eigen::LLT<Eigen::MatrixXd> capacitance_llt_{Eigen::MatrixXd()};
   std::vector<double> workspace_;  // [B | stale u_i] for the one multi-column solve
   std::vector<int> stale_;
   double capacitance_rcond_ = 1.0;

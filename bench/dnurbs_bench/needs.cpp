@@ -123,8 +123,7 @@ void run_needs(const BenchOptions& options, BoundChecks& checks) {
     settings.newton_iterations = 1;
     int restarts = 0;
     const double naive_step = seconds_per_step(naive, settings, 1e-2, minimum_seconds, &restarts);
-    const double chosen_step =
-        seconds_per_step(chosen, settings, 1e-2, minimum_seconds, &restarts);
+    const double chosen_step = seconds_per_step(chosen, settings, 1e-2, minimum_seconds, &restarts);
     if (restarts > 0) {
       std::cerr << "needs: swung sphere (" << knots << " knots per span) restarted " << restarts
                 << " times\n";

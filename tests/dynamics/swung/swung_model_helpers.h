@@ -87,9 +87,8 @@ inline double rotational_asymmetry(const Model& model, const Eigen::VectorXd& q,
     Eigen::Vector2d low(1e300, 1e300);
     Eigen::Vector2d high(-1e300, -1e300);
     for (int j = 0; j < v_count; ++j) {
-      const Eigen::Vector3d x =
-          model.position(q, Eigen::Vector2d(i / static_cast<double>(u_count),
-                                            j / static_cast<double>(v_count)));
+      const Eigen::Vector3d x = model.position(
+          q, Eigen::Vector2d(i / static_cast<double>(u_count), j / static_cast<double>(v_count)));
       const Eigen::Vector2d radius_height(x.head<2>().norm(), x.z());
       low = low.cwiseMin(radius_height);
       high = high.cwiseMax(radius_height);
