@@ -1,12 +1,9 @@
 // dnurbs.Integrator (dynamics/integrators/integrator.h), solve_static_equilibrium
-// (dynamics/integrators/static_equilibrium.h), dnurbs.TargetTrajectory
-// (constraints/target_trajectory.h) and dnurbs.ConstraintSolver with the point constraints
-// (constraints/constraint_solver.h, constraints/point_constraints.h).
+// (dynamics/integrators/static_equilibrium.h) and dnurbs.TargetTrajectory
+// (constraints/target_trajectory.h); bind_constraints.cpp binds the ConstraintSolver.
 
 #include <pybind11/stl.h>
 
-#include "constraints/constraint_solver.h"
-#include "constraints/point_constraints.h"
 #include "constraints/target_trajectory.h"
 #include "dynamics/integrators/integrator.h"
 #include "dynamics/integrators/static_equilibrium.h"
@@ -37,89 +34,6 @@ TargetTrajectory keyframes(const py::object& times, const py::object& points) {
     positions.emplace_back(values.row(i).transpose());
   }
   return TargetTrajectory::keyframes(keys, positions);
-}
-
-py::dict report_dict(const ConstraintReport& report) {
-  py::dict result;
-  result["row_count"] = report.row_count;
-  result["rank"] = report.rank;
-  result["rank_deficient"] = report.rank_deficient;
-  result["involved"] = report.involved;
-  result["residual"] = report.residual;
-  result["message"] = report.message;
-  return result;
-}
-
-void bind_constraint_solver(py::module_& module) {
-  py::class_<ConstraintSolver>(
-      module, "ConstraintSolver",
-      "Holonomic constraints C(q, t) = 0 on a System, stabilized with Baumgarte's method "
-      "(alpha, beta; beta < 0: beta = alpha) and solved with the step (Terzopoulos, Deformable "
-      "Models, eqs. 1.39-1.40).")
-      .def(py::init<>(), "An empty set of constraints.")
-      .def(
-          "add_point_target",
-          [](ConstraintSolver& self, const System& system, int model, const py::object& u,
-             const TargetTrajectory& target, double alpha, double beta) {
-            return self.add(system, PointTargetConstraint(model, material_parameter(u), target),
-                            {alpha, beta});
-          },
-          py::arg("system"), py::arg("model"), py::arg("u"), py::arg("target"),
-          py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
-          "x(u) of `model` follows the TargetTrajectory `target`; returns the index.")
-      .def(
-          "add_point_to_point",
-          [](ConstraintSolver& self, const System& system, int model_a, const py::object& u_a,
-             int model_b, const py::object& u_b, double alpha, double beta) {
-            return self.add(system,
-                            PointToPointConstraint(model_a, material_parameter(u_a), model_b,
-                                                   material_parameter(u_b)),
-                            {alpha, beta});
-          },
-          py::arg("system"), py::arg("model_a"), py::arg("u_a"), py::arg("model_b"), py::arg("u_b"),
-          py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
-          "x_a(u_a) = x_b(u_b) between two models.")
-      .def(
-          "add_control_point",
-          [](ConstraintSolver& self, const System& system, int model, int control_point,
-             const py::object& target, double alpha, double beta) {
-            return self.add(
-                system,
-                ControlPointConstraint(model, control_point,
-                                       matrix_from_array(target, "target", 1, 3, true).row(0)),
-                {alpha, beta});
-          },
-          py::arg("system"), py::arg("model"), py::arg("control_point"), py::arg("target"),
-          py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
-          "Control point `control_point` of `model` held at `target` (3,).")
-      .def_property_readonly("constraint_count", &ConstraintSolver::constraint_count,
-                             "Number of constraints.")
-      .def_property_readonly("row_count", &ConstraintSolver::row_count,
-                             "Number of constraint rows (3 per point constraint).")
-      .def(
-          "step",
-          [](ConstraintSolver& self, Integrator& integrator, System& system, double dt, int count) {
-            for (int i = 0; i < count; ++i) {
-              self.step(integrator, system, dt);
-            }
-          },
-          py::arg("integrator"), py::arg("system"), py::arg("dt"), py::arg("count") = 1,
-          "Advances `system` `count` steps of dt with every constraint enforced.")
-      .def(
-          "violations",
-          [](const ConstraintSolver& self, const System& system) {
-            return array_from_vector(self.violations(system));
-          },
-          py::arg("system"), "|C_i| per constraint at the current state, (#constraints,).")
-      .def_property_readonly(
-          "multipliers",
-          [](const ConstraintSolver& self) { return array_from_vector(self.multipliers()); },
-          "Lagrange multipliers of the last step, (row_count,).")
-      .def(
-          "last_report",
-          [](const ConstraintSolver& self) { return report_dict(self.last_report()); },
-          "What the last step found about the rows: a dict row_count, rank, rank_deficient, "
-          "involved, residual, message.");
 }
 
 }  // namespace
@@ -178,7 +92,6 @@ void bind_integrator(py::module_& module) {
             return array_from_vector(self.velocity(time));
           },
           py::arg("t"), "xdot(t), (3,).");
-  bind_constraint_solver(module);
 }
 
 }  // namespace dnurbs::python

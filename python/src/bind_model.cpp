@@ -13,20 +13,13 @@
 #include "io/scene.h"
 #include "io/scene_simulation.h"
 #include "python/src/bindings.h"
+#include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"
 #include "python/src/sparse_matrices.h"
 
 namespace dnurbs::python {
 
 namespace {
-
-// The coordinates argument: the model's initial coordinates for None, else (coordinate_count,).
-Eigen::VectorXd model_state(const Model& model, const py::object& q) {
-  if (q.is_none()) {
-    return model.initial_coordinates();
-  }
-  return vector_from_array(q, "q", model.coordinate_count());
-}
 
 // Material points: u of shape (...) for curves, (..., 2) for surfaces.
 ItemArray material_points(const Model& model, const py::object& u) {

@@ -11,46 +11,13 @@
 #include "python/src/bindings.h"
 #include "python/src/control_net_properties.h"
 #include "python/src/numpy_arrays.h"
+#include "python/src/surface_arrays.h"
 
 namespace dnurbs::python {
 
 namespace {
 
 using Vector3Map = Eigen::Map<Eigen::Vector3d>;
-
-// One 3-vector per parameter pair: shape broadcast(u, v).shape + (3,).
-template <typename Function>
-py::array_t<double> vector_per_parameter(const py::object& u, const py::object& v,
-                                         const Function& function) {
-  const auto [us, vs] = broadcast_items(u, v);
-  py::array_t<double> result = new_result(us, {3});
-  double* out = result.mutable_data();
-  for (py::ssize_t i = 0; i < us.count; ++i) {
-    Vector3Map(out + 3 * i) = function(*us.item(i), *vs.item(i));
-  }
-  return result;
-}
-
-py::array_t<double> surface_derivatives(const NurbsSurface& surface, const py::object& u,
-                                        const py::object& v, int order) {
-  const auto [us, vs] = broadcast_items(u, v);
-  if (order < 0 || order > kMaxDerivativeOrder) {
-    throw make_error("derivative order ", order, " is outside 0..", kMaxDerivativeOrder);
-  }
-  py::array_t<double> result = new_result(us, {order + 1, order + 1, 3});
-  double* out = result.mutable_data();
-  std::fill(out, out + result.size(), 0.0);
-  SurfaceDerivatives derivatives;
-  for (py::ssize_t i = 0; i < us.count; ++i) {
-    surface.derivatives(*us.item(i), *vs.item(i), order, derivatives);
-    for (int k = 0; k <= order; ++k) {
-      for (int l = 0; k + l <= order; ++l) {
-        Vector3Map(out + 3 * ((i * (order + 1) + k) * (order + 1) + l)) = derivatives(k, l);
-      }
-    }
-  }
-  return result;
-}
 
 py::dict surface_curvature(const NurbsSurface& surface, const py::object& u, const py::object& v) {
   const auto [us, vs] = broadcast_items(u, v);
@@ -173,7 +140,8 @@ void bind_nurbs_surface(py::module_& module) {
           },
           py::arg("u"), py::arg("v"),
           "Points S(u, v): u, v array_like broadcast to one shape (...) -> array (..., 3).")
-      .def("derivatives", &surface_derivatives, py::arg("u"), py::arg("v"), py::arg("order"),
+      .def("derivatives", &surface_derivative_array<NurbsSurface>, py::arg("u"), py::arg("v"),
+           py::arg("order"),
            "Partial derivatives d^(k+l) S / du^k dv^l (Piegl & Tiller A4.4): u, v (...) -> "
            "array (..., order + 1, order + 1, 3) with [..., k, l, :] for k + l <= order (zero "
            "for k + l > order).")

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "io/checkpoint.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
 #include "python/src/bindings.h"
@@ -140,6 +141,67 @@ void bind_simulation_state(py::class_<SceneSimulation>& simulation) {
           "Per-model sizes and costs at the initial state: a list of dicts.");
 }
 
+void bind_simulation_restore(py::class_<SceneSimulation>& simulation) {
+  simulation
+      .def(
+          "restore",
+          [](SceneSimulation& self, const py::object& checkpoint) {
+            if (py::isinstance<py::dict>(checkpoint)) {
+              self.restore(checkpoint_from_dict(checkpoint.cast<py::dict>()), "checkpoint dict");
+            } else {
+              const auto path = checkpoint.cast<std::filesystem::path>();
+              self.restore(read_checkpoint_file(path), path.string());
+            }
+          },
+          py::arg("checkpoint"),
+          "Continues from a checkpoint: a dict (SceneSimulation.checkpoint, read_checkpoint) or "
+          "a checkpoint file's path. Raises dnurbs.Error if its scene hash or sizes do not "
+          "match this scene. Stepping on repeats the uninterrupted run bit for bit.")
+      .def(
+          "log_row",
+          [](const SceneSimulation& self) {
+            const std::vector<double> row = self.log_row(self.sample());
+            return array_from_vector(Eigen::Map<const Eigen::VectorXd>(
+                row.data(), static_cast<Eigen::Index>(row.size())));
+          },
+          "The CSV log's row of the current state (the values of log_columns), (#columns,).")
+      .def_property_readonly(
+          "system", [](const SceneSimulation& self) { return System(self.system()); },
+          "A copy of the simulation's System (models, forces, springs, state).")
+      .def_property_readonly(
+          "constraint_descriptions",
+          [](const SceneSimulation& self) {
+            std::vector<std::string> descriptions;
+            for (int i = 0; i < self.constraints().constraint_count(); ++i) {
+              descriptions.push_back(self.constraints().constraint(i).description());
+            }
+            return descriptions;
+          },
+          "A description of each of the scene's constraints (a list of str).")
+      .def(
+          "max_violation",
+          [](const SceneSimulation& self) {
+            return self.constraints().max_violation(self.system());
+          },
+          "max_i |C_i| of the scene's constraints at the current state (0 without any).")
+      .def_property_readonly(
+          "integrator_scheme",
+          [](const SceneSimulation& self) {
+            return std::string(to_string(self.integrator().settings().scheme));
+          },
+          "The scene's integration scheme: central, implicit-euler or newmark.")
+      .def(
+          "energy_budget",
+          [](const SceneSimulation& self) {
+            const EnergyBudget& budget = self.energy_budget();
+            return py::dict(py::arg("initial_energy") = budget.initial_energy(),
+                            py::arg("work") = budget.work(),
+                            py::arg("energy_moved") = budget.energy_moved());
+          },
+          "The run's energy budget: a dict initial_energy, work (of the applied forces so far), "
+          "energy_moved.");
+}
+
 }  // namespace
 
 void bind_scene_simulation(py::module_& module) {
@@ -175,6 +237,7 @@ void bind_scene_simulation(py::module_& module) {
            "total_steps, diverged, stopped, message, frames_written, log, checkpoint, "
            "final_mesh, shape_files); a diverging step is not an exception here.");
   bind_simulation_state(simulation);
+  bind_simulation_restore(simulation);
 }
 
 }  // namespace dnurbs::python

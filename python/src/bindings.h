@@ -33,7 +33,7 @@ void bind_scene_simulation(py::module_& module);
 void bind_model(py::module_& module);
 /// dnurbs.System with forces and springs.
 void bind_system(py::module_& module);
-/// dnurbs.Integrator, solve_static_equilibrium, TargetTrajectory and ConstraintSolver.
+/// dnurbs.Integrator, solve_static_equilibrium and TargetTrajectory.
 void bind_integrator(py::module_& module);
 
 /// fit_dnurbs_surface, fit_dnurbs_curve, their starts and minimize_energy.
@@ -42,5 +42,23 @@ void bind_design(py::module_& module);
 /// A checkpoint as a dict of Python values and arrays (scene, scene_hash, step, time,
 /// coordinates, velocities, accelerations_valid, accelerations).
 py::dict checkpoint_dict(const Checkpoint& checkpoint);
+/// The inverse of checkpoint_dict; Error naming a missing key or a bad array.
+Checkpoint checkpoint_from_dict(const py::dict& values);
+
+/// dnurbs.DeformableSuperquadricModel and superquadric_parameter_names.
+void bind_superquadric(py::module_& module);
+/// dnurbs.Grid, flat_grid_positions, TerzopoulosSurface, PdeSurface and Snake.
+void bind_grid_models(py::module_& module);
+/// dnurbs.SwungSurface, the swung prototypes, refine_swung_surface and DNurbsSwungSurface.
+void bind_swung(py::module_& module);
+/// dnurbs.Triangulation, TriangularBSplineBasis, TriangularNurbsSurface and
+/// TriangularDNurbsSurface.
+void bind_triangular(py::module_& module);
+/// Shape files (parse, read, write, to_json; triangular ones too) and checkpoint files.
+void bind_shape_files(py::module_& module);
+/// dnurbs.ConstraintSolver with point, surface normal, curve-on-surface and hinge constraints.
+void bind_constraints(py::module_& module);
+/// dnurbs.Image, image filters and potentials, contours, TSnake and TSurface (vision/).
+void bind_vision(py::module_& module);
 
 }  // namespace dnurbs::python

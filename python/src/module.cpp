@@ -18,9 +18,16 @@ PYBIND11_MODULE(_dnurbs, module) {
   bind_primitive_shapes(module);
   bind_triangle_mesh(module);
   bind_model(module);
+  bind_superquadric(module);
+  bind_grid_models(module);
+  bind_swung(module);
+  bind_triangular(module);
   bind_system(module);
   bind_integrator(module);
   bind_design(module);
   bind_scene(module);
   bind_scene_simulation(module);
+  bind_shape_files(module);
+  bind_constraints(module);
+  bind_vision(module);
 }

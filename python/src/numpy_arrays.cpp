@@ -30,7 +30,13 @@ std::string expected_text(long rows, long columns) {
   } else {
     text << rows;
   }
-  text << ", " << columns << ")";
+  text << ", ";
+  if (columns < 0) {
+    text << "m";
+  } else {
+    text << columns;
+  }
+  text << ")";
   return text.str();
 }
 
@@ -53,8 +59,8 @@ Eigen::MatrixXd matrix_from_array(const py::object& value, const std::string& na
                                   long columns, bool one_row_ok) {
   const py::array_t<double> values = real_array(value, name);
   const bool one_row = one_row_ok && values.ndim() == 1 && values.shape(0) == columns;
-  const bool matches =
-      values.ndim() == 2 && values.shape(1) == columns && (rows < 0 || values.shape(0) == rows);
+  const bool matches = values.ndim() == 2 && (columns < 0 || values.shape(1) == columns) &&
+                       (rows < 0 || values.shape(0) == rows);
   if (!one_row && !matches) {
     const std::string expected =
         one_row_ok ? "(" + std::to_string(columns) + ",)" : expected_text(rows, columns);
@@ -68,9 +74,9 @@ Eigen::MatrixXd matrix_from_array(const py::object& value, const std::string& na
     }
     return matrix;
   }
-  Eigen::MatrixXd matrix(values.shape(0), columns);
+  Eigen::MatrixXd matrix(values.shape(0), values.shape(1));
   const auto view = values.unchecked<2>();
-  for (long j = 0; j < columns; ++j) {
+  for (long j = 0; j < matrix.cols(); ++j) {
     for (long i = 0; i < matrix.rows(); ++i) {
       matrix(i, j) = view(i, j);
     }

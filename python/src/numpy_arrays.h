@@ -30,7 +30,8 @@ namespace py = pybind11;
 /// not real (bool, int, unsigned or float).
 py::array_t<double> real_array(const py::object& value, const std::string& name);
 
-/// `value` (shape (rows, columns)) as an Eigen matrix; rows < 0 accepts any row count, and a
+/// `value` (shape (rows, columns)) as an Eigen matrix; rows < 0 (columns < 0) accepts any row
+/// (column) count, and a
 /// 1-D array of `columns` values is read as one row when `one_row_ok`. Throws Error naming
 /// `name` and both shapes otherwise.
 Eigen::MatrixXd matrix_from_array(const py::object& value, const std::string& name, long rows,

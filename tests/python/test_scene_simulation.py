@@ -24,11 +24,16 @@ def shortened_scene(name, steps, folder):
     scene["output"]["preview"] = False
     path = folder / f"{name}.json"
     path.write_text(json.dumps(scene))
+    # The scan that fit_and_sculpt fits, beside the copy of the scene.
+    (folder / "dome_scan.xyz").write_bytes((SCENES / "dome_scan.xyz").read_bytes())
     return path
 
 
+# fit_and_sculpt: a fitted D-NURBS surface pulled by a keyframed spring; swung_egg: a swung
+# D-NURBS surface and a spring; snake_contour: a snake with a spring and a control point force.
 @pytest.mark.parametrize("name, steps", [("curve_sculpting", 120), ("constraints", 40),
-                                         ("cloth_terzopoulos", 20)])
+                                         ("cloth_terzopoulos", 20), ("fit_and_sculpt", 30),
+                                         ("swung_egg", 10), ("snake_contour", 20)])
 def test_python_loop_equals_cpp_command_bit_for_bit(name, steps, tmp_path):
     if not TOOL.exists():
         pytest.skip(f"the dnurbs command is not built ({TOOL})")
