@@ -162,6 +162,7 @@ PdeSurface make_pde(const Grid& grid, const py::object& rest, double b, double c
   material.tangent_v0 = slopes(2);
   material.tangent_v1 = slopes(3);
   std::vector<DeformationRegion> spec;
+  spec.reserve(regions.size());
   for (const auto& [centre, radius] : regions) {
     spec.push_back({vector3_argument(centre, "region centre"), radius});
   }

@@ -149,6 +149,12 @@ void bind_simulation_restore(py::class_<SceneSimulation>& simulation) {
             if (py::isinstance<py::dict>(checkpoint)) {
               self.restore(checkpoint_from_dict(checkpoint.cast<py::dict>()), "checkpoint dict");
             } else {
+              if (!py::isinstance<py::str>(checkpoint) && !py::hasattr(checkpoint, "__fspath__")) {
+                throw py::type_error(
+                    "checkpoint is a " +
+                    py::str(py::type::of(checkpoint).attr("__name__")).cast<std::string>() +
+                    ", must be a dict or a path");
+              }
               const auto path = checkpoint.cast<std::filesystem::path>();
               self.restore(read_checkpoint_file(path), path.string());
             }
@@ -172,6 +178,7 @@ void bind_simulation_restore(py::class_<SceneSimulation>& simulation) {
           "constraint_descriptions",
           [](const SceneSimulation& self) {
             std::vector<std::string> descriptions;
+            descriptions.reserve(static_cast<size_t>(self.constraints().constraint_count()));
             for (int i = 0; i < self.constraints().constraint_count(); ++i) {
               descriptions.push_back(self.constraints().constraint(i).description());
             }

@@ -213,6 +213,7 @@ void bind_superquadric(py::module_& module) {
       "superquadric_parameter_names",
       [] {
         std::vector<std::string> names;
+        names.reserve(kSuperquadricShapeParameterCount);
         for (int k = 0; k < kSuperquadricShapeParameterCount; ++k) {
           names.emplace_back(superquadric_parameter_name(k));
         }

@@ -46,6 +46,14 @@ Volume volume_from_array(const py::object& voxels) {
   return volume;
 }
 
+py::array_t<double> volume_voxels(const Volume& volume) {
+  py::array_t<double> result({static_cast<py::ssize_t>(volume.size[2]),
+                              static_cast<py::ssize_t>(volume.size[1]),
+                              static_cast<py::ssize_t>(volume.size[0])});
+  std::copy(volume.values.begin(), volume.values.end(), result.mutable_data());
+  return result;
+}
+
 // The parameters of T-snakes and T-surfaces from keyword arguments; Error naming an unknown key.
 template <typename Parameters>
 Parameters adaptive_parameters(const py::kwargs& options) {
@@ -82,6 +90,7 @@ Contour contour_argument(const py::object& value) {
 
 std::vector<Contour> contour_list(const std::vector<py::object>& values) {
   std::vector<Contour> contours;
+  contours.reserve(values.size());
   for (const py::object& value : values) {
     contours.push_back(contour_argument(value));
   }
@@ -147,7 +156,18 @@ void bind_images(py::module_& module) {
       .def(py::init(&volume_from_array), py::arg("voxels"),
            "voxels: (nz, ny, nx), voxel [z, y, x]; copied.")
       .def_property_readonly(
-          "size", [](const Volume& self) { return self.size; }, "(nx, ny, nz).");
+          "size", [](const Volume& self) { return self.size; }, "(nx, ny, nz).")
+      .def_property_readonly("voxels", &volume_voxels, "The voxels, (nz, ny, nx): a new array.")
+      .def_property_readonly(
+          "spacing", [](const Volume& self) { return array_from_vector(self.spacing); },
+          "Distances between voxel centres (x, y, z), (3,) (from NRRD spacings).");
+  module.def("read_nrrd", &read_nrrd, py::arg("path"),
+             "Reads a 3-D NRRD file (integer or float types; raw, ascii or gzip encodings) into "
+             "a Volume, values as stored.");
+  module.def("write_nrrd", &write_nrrd, py::arg("volume"), py::arg("path"),
+             "Writes a Volume as NRRD with raw little-endian doubles (an exact round trip).");
+  module.def("read_volume_slices", &read_volume_slices, py::arg("paths"),
+             "A Volume from a list of PNG or PGM slices (slice k at z = k), values in [0, 1].");
   module.def("read_image", &read_image, py::arg("path"),
              "Reads a PNG or PGM file (8 or 16 bit; colour to grey) into an Image in [0, 1].");
   module.def("write_png", &write_png, py::arg("image"), py::arg("path"), py::arg("bit_depth") = 8,

@@ -26,8 +26,16 @@ def test_images_round_trip_through_arrays_and_files(tmp_path):
         dnurbs.write_png(image, str(tmp_path / "b.png"), 12)
     with pytest.raises(ValueError, match="pixels must have shape"):
         dnurbs.Image(np.zeros(5))
-    volume = dnurbs.Volume(np.zeros((4, 3, 2)))
+    voxels = np.arange(24.0).reshape(4, 3, 2) / 7
+    volume = dnurbs.Volume(voxels)
     assert volume.size == [2, 3, 4]
+    np.testing.assert_array_equal(volume.voxels, voxels)
+    np.testing.assert_array_equal(volume.spacing, [1, 1, 1])
+    dnurbs.write_nrrd(volume, str(tmp_path / "v.nrrd"))
+    # Raw doubles: an exact round trip.
+    np.testing.assert_array_equal(dnurbs.read_nrrd(str(tmp_path / "v.nrrd")).voxels, voxels)
+    slices = dnurbs.read_volume_slices([str(tmp_path / "a.png"), str(tmp_path / "a.pgm")])
+    np.testing.assert_array_equal(slices.voxels, np.stack([pixels, pixels]))
 
 
 def test_gaussian_kernel_smoothing_and_edge_potential_of_a_ramp():
