@@ -57,8 +57,9 @@ def test_curve_glued_on_a_surface_and_a_hinge():
     system.add_gravity(1, [0, 0, -1])
     integrator = dnurbs.Integrator("implicit-euler")
     solver.step(integrator, system, 0.01, 10)
-    # Baumgarte (alpha = beta = 20) keeps the drift of the glued points within 1e-6 in 10 steps.
-    assert solver.max_violation(system) <= 1e-6
+    # Ball joints between control-net models with fixed weights are linear in q, so the step's
+    # constraint rows hold them to round-off (measured 2.5e-16).
+    assert solver.max_violation(system) <= 1e-13
     assert system.position(1, 0.5)[2] < -1e-4  # gravity pulled the curve and the sheet down
     hinge = dnurbs.System()
     hinge.add_model(sheet())

@@ -42,7 +42,8 @@ def test_affine_reproduction_and_derivatives():
     assert basis.degree == 2 and basis.function_count == 6 * 8
     assert basis.triangulation.triangles.shape == (8, 3)
     assert surface.basis.function_count == 48 and not surface.is_rational
-    assert surface.control_points.shape == (48, 3) and surface.weights.shape in [(0,), (48,)]
+    assert surface.control_points.shape == (48, 3)
+    np.testing.assert_array_equal(surface.weights, np.ones(48))  # None: all weights 1
     points = surface(POINTS)
     assert points.shape == (4, 3)
     expected = np.column_stack([POINTS, 0.3 * POINTS[:, 0] - 0.2 * POINTS[:, 1] + 0.1])
@@ -55,6 +56,9 @@ def test_affine_reproduction_and_derivatives():
     normal = np.array([-0.3, 0.2, 1]) / np.linalg.norm([-0.3, 0.2, 1])
     np.testing.assert_allclose(surface.unit_normal(POINTS), np.broadcast_to(normal, (4, 3)),
                                atol=1e-12)
+    # Fortran order and strided slices read the same parameters.
+    np.testing.assert_array_equal(surface(np.asfortranarray(POINTS)), points)
+    np.testing.assert_array_equal(surface(np.repeat(POINTS, 2, axis=0)[::2]), points)
     flat = dnurbs.flat_triangular_surface(basis)
     np.testing.assert_allclose(flat(POINTS)[:, :2], POINTS, atol=1e-15)
     equal = dnurbs.TriangularNurbsSurface(basis, surface.control_points, np.full(48, 3.0))

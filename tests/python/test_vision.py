@@ -18,6 +18,9 @@ def test_images_round_trip_through_arrays_and_files(tmp_path):
     image = dnurbs.Image(pixels)
     assert (image.width, image.height) == (30, 20)
     np.testing.assert_array_equal(image.pixels, pixels)
+    np.testing.assert_array_equal(dnurbs.Image(np.asfortranarray(pixels)).pixels, pixels)
+    np.testing.assert_array_equal(dnurbs.Image(np.repeat(pixels, 2, axis=1)[:, ::2]).pixels,
+                                  pixels)
     for name, write in [("a.png", dnurbs.write_png), ("a.pgm", dnurbs.write_pgm)]:
         write(image, str(tmp_path / name), 8)
         # 8-bit files hold k / 255 exactly: the read value is the same double.
@@ -81,10 +84,13 @@ def test_t_snake_finds_a_bright_disk():
     assert snake.intensity([20, 15]) == 1.0 and snake.intensity([2, 2]) == 0.0
     steps = snake.run(400)
     assert steps == snake.steps_taken and 0 < steps <= 400
-    # The disk of radius 8 (201 pixel centres inside, pi 8^2 = 201.1): the snake stops on the
-    # edge within about a pixel, |area - pi r^2| <= 2 pi r * 1.
-    assert abs(snake.enclosed_area - np.pi * 64) <= 2 * np.pi * 8
+    # The disk of radius 8 is a binary image: its edge is known to a pixel (+-0.5 px about the
+    # radius, the pixel quantization), so the nodes stop within 8 +- 0.6 (measured 7.42..8.47)
+    # and the area within 2 pi r 0.5 of pi r^2 (measured 196.9 against 201.1).
     contour = snake.contours[0]
+    radii = np.linalg.norm(contour - [20, 15], axis=1)
+    assert np.abs(radii - 8).max() <= 0.6
+    assert abs(snake.enclosed_area - np.pi * 64) <= 2 * np.pi * 8 * 0.5
     assert snake.node_forces(contour).shape == contour.shape
     square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float)
     np.testing.assert_allclose(dnurbs.TSnake.outward_normals(square)[0],
@@ -107,8 +113,9 @@ def test_t_surface_finds_a_bright_ball():
     surface.step()
     surface.run(200)
     radii = np.linalg.norm(surface.mesh.vertices - 8.0, axis=1)
-    # The ball of radius 5 voxels, found within about a grid cell (1 voxel).
-    assert abs(radii.mean() - 5.0) <= 1.0
+    # The binary ball of radius 5 voxels: every vertex within the voxel quantization, 5 +- 0.5
+    # (measured 4.62..5.39, mean 4.95).
+    assert np.abs(radii - 5.0).max() <= 0.5
     assert surface.vertex_forces().shape == surface.mesh.vertices.shape
 
 
