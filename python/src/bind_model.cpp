@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "dynamics/core/model_tessellation.h"
+#include "dynamics/core/sculpted_region.h"
 #include "dynamics/dnurbs/dnurbs_curve.h"
 #include "dynamics/dnurbs/dnurbs_surface.h"
 #include "io/scene.h"
@@ -141,6 +142,40 @@ void bind_model_contract(py::class_<Model>& model) {
            "Fixes one velocity-space coordinate.")
       .def("fix_point", &Model::fix_point, py::arg("i"), "Fixes control point (or node) i.")
       .def("fix_border", &Model::fix_border, "Fixes every point on the border of an open surface.")
+      .def(
+          "freeze_outside",
+          [](Model& self, const py::object& parameters, std::vector<int> control_points,
+             int margin) {
+            SculptedRegion region;
+            if (!parameters.is_none()) {
+              const Eigen::MatrixXd uv = matrix_from_array(parameters, "parameters", -1, 2, true);
+              for (Eigen::Index i = 0; i < uv.rows(); ++i) {
+                region.parameters.emplace_back(uv.row(i).transpose());
+              }
+            }
+            region.control_points = std::move(control_points);
+            return self.freeze_outside(region, margin);
+          },
+          py::arg("parameters") = py::none(), py::arg("control_points") = std::vector<int>{},
+          py::arg("margin") = 1,
+          "Local sculpting: fixes every control point that cannot move the material points "
+          "`parameters` (k, 2) (or (2,)) and the listed control points, grown by `margin` "
+          "rings; returns how many were frozen. Raises dnurbs.Error for models without it.")
+      .def(
+          "advance_coordinates",
+          [](const Model& self, const py::object& q, const py::object& dv) {
+            const Eigen::VectorXd state = model_state(self, q);
+            Eigen::VectorXd result(state.size());
+            self.advance_coordinates(state, vector_from_array(dv, "dv", self.velocity_count()),
+                                     result);
+            return array_from_vector(result);
+          },
+          py::arg("q"), py::arg("dv"),
+          "q advanced by the velocity-space increment dv (m,): q + dv for most models, the "
+          "exponential map for rotations (superquadrics). Returns (n,).")
+      .def("control_point_offset", &Model::control_point_offset, py::arg("i"),
+           "The index in q of control point (or node) i's x coordinate; raises dnurbs.Error "
+           "for models without 3-D control points among their coordinates.")
       .def("exact_shape", &model_exact_shape, py::arg("q") = py::none(),
            "The NurbsCurve or NurbsSurface at q, or None for models without one.")
       .def("tessellate", &model_tessellation, py::arg("q") = py::none(), py::arg("segments_u") = 32,

@@ -61,6 +61,8 @@ def test_terzopoulos_internal_force_is_minus_the_linearized_stiffness_times_q():
     expected = -(stiffness @ q.reshape(-1, 3)).reshape(-1)
     np.testing.assert_allclose(surface.internal_force(q), expected, rtol=0,
                                atol=1e-12 * np.abs(expected).max())
+    assert surface.control_point_offset(7) == 21  # node i at 3 i
+    np.testing.assert_array_equal(surface.advance_coordinates(q, np.ones(60)), q + 1)
     surface.set_initial_positions(q.reshape(-1, 3))
     np.testing.assert_array_equal(surface.initial_coordinates(), q)
     normals = surface.approximate_normals(rest.reshape(-1), rest.reshape(-1))

@@ -64,6 +64,14 @@ def test_momenta_of_rigid_motions():
     np.testing.assert_allclose(model.angular_momentum(None, spin), inertia @ spin[3:],
                                rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(model.linear_momentum(None, spin), 0, atol=1e-12)
+    # The exponential map: a body rotation of pi/2 about z turns the identity quaternion into
+    # (cos pi/4, 0, 0, sin pi/4); dc moves the centre.
+    q = model.advance_coordinates(None, [0.5, 0, 0, 0, 0, np.pi / 2])
+    np.testing.assert_allclose(q[:3], [1, 0, 0], atol=1e-16)
+    np.testing.assert_allclose(model.orientation(q), [np.sqrt(0.5), 0, 0, np.sqrt(0.5)],
+                               atol=1e-15)
+    with pytest.raises(ValueError, match="control point"):
+        model.control_point_offset(0)
 
 
 def test_global_parts_free_the_shape_parameters():

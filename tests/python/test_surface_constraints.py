@@ -43,6 +43,22 @@ def test_surface_normal_held_while_a_force_tilts_the_sheet():
         solver.description(3)
 
 
+def test_local_sculpting_freezes_the_control_points_away_from_a_point():
+    model = sheet(count=7)
+    # Bicubic on 4 x 4 spans: the span holding (0.5, 0.5) has (p + 1)^2 = 16 control points;
+    # with margin 0 the other 33 of the 7 x 7 net are frozen, never one that moves the point.
+    frozen = model.freeze_outside([0.5, 0.5], margin=0)
+    assert frozen == 49 - 16 and len(model.fixed_coordinates) == 3 * frozen
+    jacobian = model.position_jacobian(None, [0.5, 0.5], dense=True)
+    moving = set(np.flatnonzero(np.abs(jacobian).sum(axis=0)))
+    assert moving and not moving & set(model.fixed_coordinates)
+    curve = dnurbs.DNurbsCurve(dnurbs.NurbsCurve(dnurbs.KnotVector.clamped_uniform(2, 6),
+                                                 np.eye(6, 3)))
+    assert curve.freeze_outside(None, [0], margin=0) == 5
+    with pytest.raises(ValueError):
+        dnurbs.DeformableSuperquadricModel([1] * 6 + [0] * 8).freeze_outside([0.5, 0.5])
+
+
 def test_curve_glued_on_a_surface_and_a_hinge():
     system = dnurbs.System()
     system.add_model(sheet())
