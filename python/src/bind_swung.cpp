@@ -146,6 +146,51 @@ void bind_swung_model(py::module_& module) {
           py::arg("q") = py::none(), "The SwungSurface at q (None: the initial one).")
       .def_property_readonly("initial_surface", &S::initial_surface,
                              "The SwungSurface the model was built from.")
+      .def(
+          "jacobian",
+          [](const S& self, const py::object& q, const py::object& u, int order) {
+            if (order < 0 || order > 2) {
+              throw make_error("derivative order ", order, " is outside 0..2");
+            }
+            SwungJacobian jacobian;
+            self.jacobian(model_state(self, q), material_parameter(u), order, jacobian);
+            const int quantities = (order + 1) * (order + 2) / 2;
+            py::array_t<double> result({quantities, 3, self.coordinate_count()});
+            std::fill(result.mutable_data(), result.mutable_data() + result.size(), 0.0);
+            auto out = result.mutable_unchecked<3>();
+            for (int k = 0; k < quantities; ++k) {
+              for (int c = 0; c < jacobian.column_count; ++c) {
+                for (int row = 0; row < 3; ++row) {
+                  out(k, row, jacobian.coordinate[static_cast<size_t>(c)]) =
+                      jacobian.columns[static_cast<size_t>(k)](row, c);
+                }
+              }
+            }
+            return result;
+          },
+          py::arg("q"), py::arg("u"), py::arg("order") = 0,
+          "The Jacobians dS^Q/dq of S, S_u, S_v, S_uu, S_uv, S_vv (those of total order <= "
+          "`order`, 0..2) at the material point u (2,) and state q: (#quantities, 3, n), dense.")
+      .def(
+          "jacobian_rate",
+          [](const S& self, const py::object& q, const py::object& qd, const py::object& u,
+             int order) {
+            if (order < 0 || order > 2) {
+              throw make_error("derivative order ", order, " is outside 0..2");
+            }
+            std::array<Eigen::Vector3d, 6> rates;
+            self.jacobian_rate(model_state(self, q), model_velocity(self, qd),
+                               material_parameter(u), order, rates);
+            const int quantities = (order + 1) * (order + 2) / 2;
+            Eigen::MatrixXd table(quantities, 3);
+            for (int k = 0; k < quantities; ++k) {
+              table.row(k) = rates[static_cast<size_t>(k)].transpose();
+            }
+            return array_from_matrix(table);
+          },
+          py::arg("q"), py::arg("qd"), py::arg("u"), py::arg("order") = 0,
+          "Jdot qd of S, S_u, ... (total order <= `order`) at u: the velocity-product part of "
+          "d^2 S^Q/dt^2, (#quantities, 3).")
       .def_property_readonly("parametric_measure", &S::parametric_measure,
                              "Area of the parametric domain.")
       .def_property_readonly("uses_separable_assembly", &S::uses_separable_assembly,

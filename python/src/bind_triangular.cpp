@@ -118,6 +118,20 @@ void bind_triangular_surface(py::module_& module) {
       .def_property_readonly("triangulation", &TriangularBSplineBasis::triangulation,
                              "The Triangulation.")
       .def(
+          "evaluate",
+          [](const TriangularBSplineBasis& self, const py::object& u, int order) {
+            TriangularBasisValues values;
+            self.evaluate(point2(u, "u"), order, values);
+            Eigen::MatrixXd table = values.value.leftCols(values.count);
+            const int filled = (order + 1) * (order + 2) / 2;
+            table.bottomRows(6 - filled).setZero();
+            return py::make_tuple(values.function, array_from_matrix(table));
+          },
+          py::arg("u"), py::arg("order") = 0,
+          "The B-splines that may be non-zero at the domain point u (2,) with derivatives up to "
+          "`order` (0..2): (functions, values) with functions a list of B-spline indices and "
+          "values (6, #functions): rows N, N_u, N_v, N_uu, N_uv, N_vv (zero beyond `order`).")
+      .def(
           "domain_points",
           [](const TriangularBSplineBasis& self) {
             return array_from_matrix(self.domain_points());

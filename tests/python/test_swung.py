@@ -119,3 +119,29 @@ def test_swung_model_coordinates_fixes_and_jacobian():
     free.fix_profile()
     free.fix_trajectory()
     assert len(free.fixed_coordinates) == 39
+
+
+def test_swung_jacobians_of_derivatives_and_their_rates():
+    model = dnurbs.DNurbsSwungSurface(dnurbs.swung_sphere(1.0))
+    rng = np.random.default_rng(4)
+    q = model.initial_coordinates() + 0.01 * rng.standard_normal(26)
+    qd = rng.standard_normal(26)
+    at = np.array([0.3, 0.4])
+    jacobian = model.jacobian(q, at, 1)
+    assert jacobian.shape == (3, 3, 26)
+    np.testing.assert_array_equal(jacobian[0], model.position_jacobian(q, at, dense=True))
+    # S_u's Jacobian is d/du of S's: central differences in u (error h^2 ~ 1e-10).
+    h = 1e-5
+    numeric = (model.jacobian(q, at + [h, 0])[0] - model.jacobian(q, at - [h, 0])[0]) / (2 * h)
+    np.testing.assert_allclose(jacobian[1], numeric, atol=1e-8)
+    # Jdot qd is the second derivative of S along q + t qd: S is bilinear in the two curves'
+    # coordinates (fixed weights), so quadratic in t and the second difference is exact up to
+    # round-off (1e-16 / h^2 with h = 1e-3).
+    rates = model.jacobian_rate(q, qd, at, 1)
+    assert rates.shape == (3, 3)
+    t = 1e-3
+    second = (model.position(q + t * qd, at) - 2 * model.position(q, at)
+              + model.position(q - t * qd, at)) / t ** 2
+    np.testing.assert_allclose(rates[0], second, atol=1e-9)
+    with pytest.raises(ValueError, match="order 3"):
+        model.jacobian(q, at, 3)

@@ -59,6 +59,15 @@ def test_affine_reproduction_and_derivatives():
     # Fortran order and strided slices read the same parameters.
     np.testing.assert_array_equal(surface(np.asfortranarray(POINTS)), points)
     np.testing.assert_array_equal(surface(np.repeat(POINTS, 2, axis=0)[::2]), points)
+    # The basis at a point: a partition of unity that reproduces u (the domain points are the
+    # blossoms of the identity), with derivatives of the sums 0 and (1, 0), (0, 1).
+    functions, values = basis.evaluate([0.3, 0.6], 2)
+    assert values.shape == (6, len(functions))
+    sums = values @ basis.domain_points()[functions]
+    np.testing.assert_allclose(values.sum(axis=1), [1, 0, 0, 0, 0, 0], atol=1e-13)
+    np.testing.assert_allclose(sums[0], [0.3, 0.6], atol=1e-14)
+    np.testing.assert_allclose(sums[1:3], np.eye(2), atol=1e-13)
+    np.testing.assert_array_equal(basis.evaluate([0.3, 0.6], 0)[1][1:], 0)
     flat = dnurbs.flat_triangular_surface(basis)
     np.testing.assert_allclose(flat(POINTS)[:, :2], POINTS, atol=1e-15)
     equal = dnurbs.TriangularNurbsSurface(basis, surface.control_points, np.full(48, 3.0))
