@@ -85,9 +85,9 @@ void DNurbsSurface::tangent_kinematics(ConstVectorRef q, ConstVectorRef qd,
   check_velocity(qd);
   start_tangent_columns(jacobian.active_count, tangents);
   const Eigen::Vector3d no_weight_column = Eigen::Vector3d::Zero();
+  const auto& weight_u = jacobian.weight_column[static_cast<size_t>(iu)];
+  const auto& weight_v = jacobian.weight_column[static_cast<size_t>(iv)];
   for (int a = 0; a < jacobian.active_count; ++a) {
-    const auto& weight_u = jacobian.weight_column[static_cast<size_t>(iu)];
-    const auto& weight_v = jacobian.weight_column[static_cast<size_t>(iv)];
     add_tangent_columns(a, jacobian.control_point[static_cast<size_t>(a)], jacobian.basis(iu, a),
                         jacobian.basis(iv, a),
                         free ? Eigen::Vector3d(weight_u.col(a)) : no_weight_column,
