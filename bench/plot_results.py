@@ -157,6 +157,34 @@ def springs_section(rows):
     return "\n".join(text)
 
 
+def floor_section(rows, run_rows):
+    """The solver-floor tables of floor_bench (bench/floor/README.md)."""
+    text = ["\n## Solver floor\n",
+            "floor_bench: Newmark step (dt = 0.01) of a clamped bicubic sheet with a point force, "
+            "integrator defaults (constant step matrix: CHOLMOD supernodal from 64 free nodes on, "
+            "SimplicialLDLT "
+            "below), against one CHOLMOD three-column solve of the same scalar step matrix; at the "
+            "largest size also the step with SimplicialLDLT. Process CPU seconds (the shared machine's wall "
+            "times vary 5x), medians of interleaved calls, ratios "
+            "from one run.\n"]
+    text.append(table(["side", "coordinates", "free nodes", "step [s]", "CHOLMOD solve3 [s]",
+                       "step / solve3", "SimplicialLDLT step [s]", "LDLT step / step"],
+                      [[r["side"], r["coordinates"], r["free_nodes"], fmt(r["step_seconds"]),
+                        fmt(r["cholmod_solve3_seconds"]), fmt(r["step_to_solve"]),
+                        fmt(r["ldlt_step_seconds"]) if float(r["ldlt_step_seconds"]) > 0 else "-",
+                        fmt(r["ldlt_step_to_step"]) if float(r["ldlt_step_to_step"]) > 0 else "-"]
+                       for r in rows]))
+    text.append("\nThe sheet scene (point force, a spring whose target rises, a probe, log every "
+                "step) through run_scene, the path of `dnurbs run`, timed between its progress "
+                "callbacks (step, energy check, log row), the first step left out.\n")
+    text.append(table(["side", "steps", "run [s]", "median step [s]", "mean step [s]",
+                       "steps per s"],
+                      [[r["side"], r["steps"], fmt(r["run_seconds"]),
+                        fmt(r["median_step_seconds"]), fmt(r["mean_step_seconds"]),
+                        fmt(r["steps_per_second"])] for r in run_rows]))
+    return "\n".join(text)
+
+
 def hardcase_table(path):
     """Tests that recorded `measure` (RecordProperty: a <testcase> attribute in older GoogleTest,
     a <properties><property> child in newer), with value, bound and whether the test passed."""
@@ -242,6 +270,8 @@ def main():
         md.append(springs_section(read_csv(data("springs.csv"))))
     if os.path.exists(data("free_weights.csv")):
         md.append(free_weights_section(read_csv(data("free_weights.csv"))))
+    if os.path.exists(data("floor.csv")) and os.path.exists(data("floor_run.csv")):
+        md.append(floor_section(read_csv(data("floor.csv")), read_csv(data("floor_run.csv"))))
     if os.path.exists(data("evaluation.csv")):
         md.append("\n## Evaluation\n")
         columns = ["evaluator", "degree", "rational", "evaluations_per_second", "ratio_to_occt",

@@ -52,4 +52,61 @@ std::optional<std::vector<int>> fixed_nodes(const std::vector<int>& fixed, int b
   return nodes;
 }
 
+namespace {
+
+void check_quadratic_form(const SparseMatrix& scalar, Eigen::Index size, int block_size) {
+  if (block_size < 1) {
+    throw make_error("Kronecker block size ", block_size, " must be at least 1");
+  }
+  if (scalar.rows() != scalar.cols() || size != scalar.rows() * block_size) {
+    throw make_error("Kronecker quadratic form: the scalar matrix is ", scalar.rows(), " by ",
+                     scalar.cols(), ", the vector has ", size, " entries (block size ", block_size,
+                     ")");
+  }
+}
+
+// sum_ij S_ij <z_i, z_j> over the stored entries of S, with component c of z_i = node(i, c).
+template <typename NodeValue>
+double quadratic_form_over_pattern(const SparseMatrix& scalar, int block_size,
+                                   const NodeValue& node) {
+  double sum = 0.0;
+  for (Eigen::Index j = 0; j < scalar.outerSize(); ++j) {
+    for (SparseMatrix::InnerIterator it(scalar, j); it; ++it) {
+      double dot = 0.0;
+      for (int c = 0; c < block_size; ++c) {
+        dot += node(it.row(), c) * node(j, c);
+      }
+      sum += it.value() * dot;
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+double kronecker_quadratic_form(const SparseMatrix& scalar,
+                                const Eigen::Ref<const Eigen::VectorXd>& x, int block_size) {
+  check_quadratic_form(scalar, x.size(), block_size);
+  const double* data = x.data();
+  return quadratic_form_over_pattern(
+      scalar, block_size, [&](Eigen::Index i, int c) { return data[i * block_size + c]; });
+}
+
+double kronecker_quadratic_form_of_difference(const SparseMatrix& scalar,
+                                              const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              const Eigen::Ref<const Eigen::VectorXd>& y,
+                                              int block_size) {
+  check_quadratic_form(scalar, x.size(), block_size);
+  if (y.size() != x.size()) {
+    throw make_error("Kronecker quadratic form of a difference: the vectors have ", x.size(),
+                     " and ", y.size(), " entries");
+  }
+  const double* xs = x.data();
+  const double* ys = y.data();
+  return quadratic_form_over_pattern(scalar, block_size, [&](Eigen::Index i, int c) {
+    const Eigen::Index k = i * block_size + c;
+    return xs[k] - ys[k];
+  });
+}
+
 }  // namespace dnurbs

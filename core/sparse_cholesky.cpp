@@ -229,9 +229,10 @@ struct SparseCholesky::Backends {
 
 SparseCholesky::SparseCholesky(const SparseCholeskySettings& settings)
     : settings_(settings), backends_(std::make_unique<Backends>()) {
-  if (settings.supernodal_threshold < 0) {
+  if (settings.supernodal_threshold < 0 || settings.constant_supernodal_threshold < 0) {
     throw make_error("sparse Cholesky: supernodal_threshold is ", settings.supernodal_threshold,
-                     ", must be >= 0");
+                     " and constant_supernodal_threshold ", settings.constant_supernodal_threshold,
+                     ", both must be >= 0");
   }
 }
 SparseCholesky::~SparseCholesky() = default;

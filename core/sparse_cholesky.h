@@ -26,9 +26,20 @@ enum class CholeskyBackend {
 /// simplicial factorization's lower overhead wins. bench/solver/README.md has the table.
 inline constexpr int kDefaultSupernodalThreshold = 200;
 
+/// Rows from which kAutomatic uses CHOLMOD for a matrix factored once and then only solved with
+/// (the integrator's constant step matrices: fixed-weight D-NURBS, grid surfaces, snakes), where
+/// the solve alone decides. Measured by bench/floor (three runs on the shared 2-core machine,
+/// 2026-11-25), the step of a clamped bicubic sheet with SimplicialLDLT over the same step with
+/// CHOLMOD: 0.89-0.93 at 4 free nodes, 0.87-0.91 at 9, 0.94-0.96 at 16, 0.91 at 25, 0.99-1.04 at
+/// 49 and 1.24 at 100: CHOLMOD's supernodal solve wins from about 50 rows.
+inline constexpr int kDefaultConstantSupernodalThreshold = 64;
+
 struct SparseCholeskySettings {
   CholeskyBackend backend = CholeskyBackend::kAutomatic;
   int supernodal_threshold = kDefaultSupernodalThreshold;  ///< rows; used by kAutomatic only
+  /// kAutomatic's threshold for callers that factor a matrix once and solve with it many times
+  /// (StepBlock of a constant model); SparseCholesky itself reads supernodal_threshold only.
+  int constant_supernodal_threshold = kDefaultConstantSupernodalThreshold;
 };
 
 /// The factorization P A P^T = L D L^T (or L L^T) of a symmetric positive definite n by n matrix

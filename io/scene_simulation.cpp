@@ -312,8 +312,9 @@ SceneSample SceneSimulation::sample() const {
   SceneSample s;
   s.step = steps_;
   s.time = system_.time();
-  s.kinetic_energy = system_.kinetic_energy();
-  s.potential_energy = system_.potential_energy();
+  // The energy budget holds both at the current state (it checked it, or started from it)
+  s.kinetic_energy = budget_.kinetic_energy();
+  s.potential_energy = budget_.potential_energy();
   s.violations = solver_.violations(system_);
   for (const auto& probe : scene_.probes) {
     s.probes.push_back(system_.position(probe.model, probe.at));

@@ -31,7 +31,7 @@ fi
 cmake -S "${root}" -B "${build}" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 jobs="$(nproc)"
 cmake --build "${build}" --target dnurbs_bench -j"${jobs}"
-for optional in spring_step_bench free_step_bench evaluation_bench closest_point_bench test_hardcase; do
+for optional in spring_step_bench free_step_bench floor_bench evaluation_bench closest_point_bench test_hardcase; do
   cmake --build "${build}" --target "${optional}" -j"${jobs}" >/dev/null 2>&1 ||
     echo "bench.sh: target ${optional} not built (absent or failing); its table is skipped"
 done
@@ -53,6 +53,14 @@ fi
 free_weights="$(find "${build}/bench" -maxdepth 3 -type f -name free_step_bench -perm -u+x | head -n 1)"
 if [ -n "${free_weights}" ]; then
   "${free_weights}" --out "${data}" "${quick[@]}" || { status=$?; echo "bench.sh: free_step_bench failed"; }
+fi
+floor="$(find "${build}/bench" -maxdepth 3 -type f -name floor_bench -perm -u+x | head -n 1)"
+if [ -n "${floor}" ]; then
+  if [ "${#quick[@]}" -gt 0 ]; then
+    "${floor}" --out "${data}" --quick || { status=$?; echo "bench.sh: floor_bench failed"; }
+  else
+    "${floor}" --out "${data}" || { status=$?; echo "bench.sh: floor_bench failed"; }
+  fi
 fi
 evaluation="$(find "${build}/bench" -maxdepth 3 -type f -name evaluation_bench -perm -u+x | head -n 1)"
 if [ -n "${evaluation}" ]; then

@@ -18,6 +18,9 @@ packages=(
   clang-tidy clang-format  # CI's style checks (scripts/clang_tidy_check.sh)
   libbenchmark-dev       # bench/
   python3 python3-matplotlib python3-numpy  # PNG previews and bench plots
+  # The Python module (python/, docs/python.md): pybind11 bindings built against the
+  # interpreter's headers; SciPy for sparse matrices out of it, pytest for its tests
+  python3-dev pybind11-dev python3-scipy python3-pytest
 )
 
 missing=()

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -442,6 +443,14 @@ double System::kinetic_energy() const {
     const Model& m = *models_[i];
     const auto q = coordinates_.segment(coordinate_offsets_[i], m.coordinate_count());
     const auto qd = velocities_.segment(velocity_offsets_[i], m.velocity_count());
+    const ModelMatrices* scalar = m.scalar_matrices();
+    const int block = m.kronecker_block_size();
+    if (scalar != nullptr && m.matrices_are_constant() && block > 0 &&
+        qd.size() == scalar->mass.rows() * block) {
+      // M = S_M (x) I_b: one pass over the scalar matrix (core/kronecker.h)
+      energy += 0.5 * kronecker_quadratic_form(scalar->mass, qd, block);
+      continue;
+    }
     const ModelMatrices* used = m.constant_matrices();
     if (used == nullptr) {
       m.assemble_matrices(q, matrices);

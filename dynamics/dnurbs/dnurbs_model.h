@@ -65,8 +65,6 @@ class DNurbsModel : public RationalControlNetModel {
   int parametric_dimension() const override { return surface_ ? 2 : 1; }
 
   void add_internal_force(ConstVectorRef q, VectorRef force) const override;
-  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 = (1/2) q^T K(q) q.
-  double potential_energy(ConstVectorRef q) const override;
   /// g = -integral mu J^T Jdot qd with Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot)
   /// (free weights; zero for fixed weights).
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
@@ -128,6 +126,8 @@ class DNurbsModel : public RationalControlNetModel {
   Eigen::Vector2d quadrature_parameter(int element, int point) const;
   // Assembly of the scalar (fixed weights) or block (free weights) matrices at q.
   void assemble_scalar(ModelMatrices& scalar) const override;
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 at the Gauss points.
+  double quadrature_potential_energy(ConstVectorRef q) const override;
   void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
   // Free weights, one pass over the Gauss points: M, D, K at q into `matrices` (block pattern,
   // weight regularization added) and, when `force` is non-null (coordinate_count() entries), the

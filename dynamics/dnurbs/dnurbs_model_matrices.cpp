@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -404,8 +405,8 @@ void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
       [](int /*element*/) {});
 }
 
-double DNurbsModel::potential_energy(ConstVectorRef q) const {
-  double energy = weight_anchor_energy(q);
+double DNurbsModel::quadrature_potential_energy(ConstVectorRef q) const {
+  double energy = 0.0;
   const int order = stiffness_order();
   if (order == 0) {
     return energy;

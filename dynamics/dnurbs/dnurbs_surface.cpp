@@ -80,44 +80,22 @@ void DNurbsSurface::tangent_kinematics(ConstVectorRef q, ConstVectorRef qd,
   tangents.su = jacobian.point_derivatives[static_cast<size_t>(iu)];
   tangents.sv = jacobian.point_derivatives[static_cast<size_t>(iv)];
 
-  // Rates S_u' = J_u qd and S_v' = J_v qd from the control point (and weight) rates, and the
-  // columns of J_u, J_v: N_u e_r for position coordinate r of an active control point, the
-  // weight column for its weight.
-  const Eigen::MatrixX3d point_rates = control_points(qd);
-  const Eigen::VectorXd weight_rates =
-      free ? weights(qd) : Eigen::VectorXd::Zero(control_point_count());
-  const int per_point = free ? 4 : 3;
-  const int count = jacobian.active_count * per_point;
-  tangents.columns.resize(static_cast<size_t>(count));
-  tangents.ju.setZero(3, count);
-  tangents.jv.setZero(3, count);
-  tangents.su_rate.setZero();
-  tangents.sv_rate.setZero();
+  // The columns of J_u, J_v (N_u e_r for position coordinate r of an active control point, the
+  // weight column for its weight) and the rates S_u' = J_u qd, S_v' = J_v qd
+  check_velocity(qd);
+  start_tangent_columns(jacobian.active_count, tangents);
+  const Eigen::Vector3d no_weight_column = Eigen::Vector3d::Zero();
+  const auto& weight_u = jacobian.weight_column[static_cast<size_t>(iu)];
+  const auto& weight_v = jacobian.weight_column[static_cast<size_t>(iv)];
   for (int a = 0; a < jacobian.active_count; ++a) {
-    const int point = jacobian.control_point[static_cast<size_t>(a)];
-    const int offset = control_point_offset(point);
-    tangents.su_rate += jacobian.basis(iu, a) * point_rates.row(point).transpose();
-    tangents.sv_rate += jacobian.basis(iv, a) * point_rates.row(point).transpose();
-    for (int r = 0; r < 3; ++r) {
-      tangents.columns[static_cast<size_t>(a * per_point + r)] = offset + r;
-      tangents.ju(r, a * per_point + r) = jacobian.basis(iu, a);
-      tangents.jv(r, a * per_point + r) = jacobian.basis(iv, a);
-    }
-    if (free) {
-      const auto& weight_u = jacobian.weight_column[static_cast<size_t>(iu)];
-      const auto& weight_v = jacobian.weight_column[static_cast<size_t>(iv)];
-      tangents.su_rate += weight_u.col(a) * weight_rates[point];
-      tangents.sv_rate += weight_v.col(a) * weight_rates[point];
-      tangents.columns[static_cast<size_t>(a * per_point + 3)] = weight_offset(point);
-      tangents.ju.col(a * per_point + 3) = weight_u.col(a);
-      tangents.jv.col(a * per_point + 3) = weight_v.col(a);
-    }
+    add_tangent_columns(a, jacobian.control_point[static_cast<size_t>(a)], jacobian.basis(iu, a),
+                        jacobian.basis(iv, a),
+                        free ? Eigen::Vector3d(weight_u.col(a)) : no_weight_column,
+                        free ? Eigen::Vector3d(weight_v.col(a)) : no_weight_column, qd, tangents);
   }
-  tangents.su_bias.setZero();
-  tangents.sv_bias.setZero();
   if (free) {
     std::array<Eigen::Vector3d, 6> rates;
-    surface_jacobian_rate(shape, u.x(), u.y(), 1, point_rates, weight_rates, rates);
+    surface_jacobian_rate(shape, u.x(), u.y(), 1, control_points(qd), weights(qd), rates);
     tangents.su_bias = rates[static_cast<size_t>(iu)];
     tangents.sv_bias = rates[static_cast<size_t>(iv)];
   }

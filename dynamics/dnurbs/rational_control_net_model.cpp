@@ -61,6 +61,8 @@ void RationalControlNetModel::build_coordinates(const Eigen::MatrixX3d& control_
     expanded_.mass = kronecker_identity(scalar_.mass, 3);
     expanded_.damping = kronecker_identity(scalar_.damping, 3);
     expanded_.stiffness = kronecker_identity(scalar_.stiffness, 3);
+    reference_gradient_ = expanded_.stiffness * initial_coordinates_;
+    reference_energy_ = quadrature_potential_energy(initial_coordinates_);
     return;
   }
   // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry
@@ -117,6 +119,53 @@ double RationalControlNetModel::weight_anchor_energy(ConstVectorRef q) const {
     energy += 0.5 * weight_stiffness_ * stretch * stretch;
   }
   return energy;
+}
+
+double RationalControlNetModel::potential_energy(ConstVectorRef q) const {
+  if (mode_ == WeightMode::kFree) {
+    return quadrature_potential_energy(q) + weight_anchor_energy(q);
+  }
+  check_coordinates(q);
+  // With d = q - q0: E(q) = E(q0) + d^T K q0 + (1/2) d^T K d exactly, K = S_K (x) I_3 constant.
+  return reference_energy_ + (q - initial_coordinates_).dot(reference_gradient_) +
+         0.5 *
+             kronecker_quadratic_form_of_difference(scalar_.stiffness, q, initial_coordinates_, 3);
+}
+
+void RationalControlNetModel::start_tangent_columns(int active_count,
+                                                    TangentKinematics& tangents) const {
+  const int count = active_count * per_control_point_;
+  tangents.columns.resize(static_cast<size_t>(count));
+  tangents.ju.setZero(3, count);
+  tangents.jv.setZero(3, count);
+  tangents.su_rate.setZero();
+  tangents.sv_rate.setZero();
+  tangents.su_bias.setZero();
+  tangents.sv_bias.setZero();
+}
+
+void RationalControlNetModel::add_tangent_columns(int slot, int point, double basis_u,
+                                                  double basis_v, const Eigen::Vector3d& weight_u,
+                                                  const Eigen::Vector3d& weight_v,
+                                                  ConstVectorRef qd,
+                                                  TangentKinematics& tangents) const {
+  const int offset = point * per_control_point_;
+  const int column = slot * per_control_point_;
+  const Eigen::Vector3d point_rate = qd.segment<3>(offset);
+  tangents.su_rate += basis_u * point_rate;
+  tangents.sv_rate += basis_v * point_rate;
+  for (int r = 0; r < 3; ++r) {
+    tangents.columns[static_cast<size_t>(column + r)] = offset + r;
+    tangents.ju(r, column + r) = basis_u;
+    tangents.jv(r, column + r) = basis_v;
+  }
+  if (mode_ == WeightMode::kFree) {
+    tangents.columns[static_cast<size_t>(column + 3)] = offset + 3;
+    tangents.ju.col(column + 3) = weight_u;
+    tangents.jv.col(column + 3) = weight_v;
+    tangents.su_rate += weight_u * qd[offset + 3];
+    tangents.sv_rate += weight_v * qd[offset + 3];
+  }
 }
 
 void RationalControlNetModel::check_coordinates(ConstVectorRef q) const {

@@ -98,6 +98,13 @@ class RationalControlNetModel : public Model {
   void add_point_force(ConstVectorRef q, const Eigen::Vector2d& u, const Eigen::Vector3d& f,
                        VectorRef force) const override;
 
+  /// E(q) = (1/2) integral sum_alpha k_alpha |x^alpha|^2 (Terzopoulos, Deformable Models,
+  /// eq. 1.25). Fixed weights: from the constant K about the initial coordinates q0,
+  /// E(q) = E(q0) + d^T K q0 + (1/2) d^T K d with d = q - q0 and E(q0) by quadrature, so that its
+  /// rounding is eps |K| |q0| |d| rather than eps |K| |q|^2 (the quadratic form of a large smooth
+  /// q cancels); free weights: by quadrature.
+  double potential_energy(ConstVectorRef q) const final;
+
   bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
   /// Fixed weights: S (x) I_3 (built once); free weights: nullptr.
   const ModelMatrices* constant_matrices() const override;
@@ -158,6 +165,16 @@ class RationalControlNetModel : public Model {
   /// coordinate_count()); weight_anchor_energy: (1/2) k_w |w - w_0|^2 at q (0 for fixed weights).
   void add_weight_anchor_force(ConstVectorRef q, VectorRef force) const;
   double weight_anchor_energy(ConstVectorRef q) const;
+  /// tangent_kinematics of the derived surfaces, in two steps: start_tangent_columns sizes
+  /// `tangents` for `active_count` control points (columns, J_u and J_v of 3 by b active_count,
+  /// rates and biases zero); add_tangent_columns fills the slot of active control point `point`:
+  /// its position columns N_u e_r, N_v e_r (r = x, y, z), with free weights its weight column
+  /// (weight_u, weight_v: dS_u/dw, dS_v/dw), and their parts of the rates J_u qd, J_v qd (qd of
+  /// velocity_count()).
+  void start_tangent_columns(int active_count, TangentKinematics& tangents) const;
+  void add_tangent_columns(int slot, int point, double basis_u, double basis_v,
+                           const Eigen::Vector3d& weight_u, const Eigen::Vector3d& weight_v,
+                           ConstVectorRef qd, TangentKinematics& tangents) const;
   /// Throws Error unless q has coordinate_count() entries (velocity_count() for qd).
   void check_coordinates(ConstVectorRef q) const;
   void check_velocity(ConstVectorRef qd) const;
@@ -175,6 +192,9 @@ class RationalControlNetModel : public Model {
   // build_coordinates (they depend on the knots, the fixed weights and the material only).
   ModelMatrices scalar_;
   ModelMatrices expanded_;
+  // Fixed weights: E(q0) by quadrature and K q0, the expansion point of potential_energy.
+  double reference_energy_ = 0.0;
+  Eigen::VectorXd reference_gradient_;
   // Free weights: the 4 x 4 block pattern, sized once, and the value index of each weight's
   // diagonal entry in it.
   SparseMatrix block_pattern_;
@@ -190,6 +210,8 @@ class RationalControlNetModel : public Model {
   // build_coordinates) and the block matrices M, D, K of free weights at q.
   virtual void assemble_scalar(ModelMatrices& scalar) const = 0;
   virtual void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const = 0;
+  // E(q) by quadrature of the rational Jacobians at q (any weight mode).
+  virtual double quadrature_potential_energy(ConstVectorRef q) const = 0;
 };
 
 /// Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot), the velocity-product part of a

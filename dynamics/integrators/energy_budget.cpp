@@ -10,8 +10,11 @@ namespace dnurbs {
 
 namespace {
 
-double system_energy(const System& system) {
-  return system.kinetic_energy() + system.potential_energy() + system.spring_energy();
+// E = kinetic + elastic + springs (the parts kept in `check`).
+void system_energy(const System& system, EnergyCheck& check) {
+  check.kinetic_energy = system.kinetic_energy();
+  check.potential_energy = system.potential_energy();
+  check.energy = check.kinetic_energy + check.potential_energy + system.spring_energy();
 }
 
 // (1/2) k |x(q, u) - target|^2 of one spring state on model i at stacked q.
@@ -56,15 +59,22 @@ EnergyBudget::EnergyBudget(EnergyBudgetSettings settings) : settings_(settings) 
   }
 }
 
-void EnergyBudget::record(const System& system, double energy) {
-  energy_ = energy;
+void EnergyBudget::record(const System& system, const EnergyCheck& energy,
+                          std::vector<Eigen::VectorXd>* forces) {
+  energy_ = energy.energy;
+  kinetic_energy_ = energy.kinetic_energy;
+  potential_energy_ = energy.potential_energy;
   time_ = system.time();
   q_ = system.coordinates();
   v_ = system.velocities();
-  forces_.resize(static_cast<size_t>(system.force_count()));
-  for (int f = 0; f < system.force_count(); ++f) {
-    forces_[static_cast<size_t>(f)].setZero(system.velocity_count());
-    system.add_applied_force(f, time_, q_, v_, forces_[static_cast<size_t>(f)]);
+  if (forces != nullptr && static_cast<int>(forces->size()) == system.force_count()) {
+    forces_.swap(*forces);  // evaluated by the caller at this state
+  } else {
+    forces_.resize(static_cast<size_t>(system.force_count()));
+    for (int f = 0; f < system.force_count(); ++f) {
+      forces_[static_cast<size_t>(f)].setZero(system.velocity_count());
+      system.add_applied_force(f, time_, q_, v_, forces_[static_cast<size_t>(f)]);
+    }
   }
   springs_.clear();
   for (int id = 0; id < system.spring_id_count(); ++id) {
@@ -75,14 +85,15 @@ void EnergyBudget::record(const System& system, double energy) {
 }
 
 void EnergyBudget::start(const System& system) {
-  const double energy = system_energy(system);
-  if (!std::isfinite(energy)) {
-    throw make_error("energy budget: the starting energy ", energy, " is not finite");
+  EnergyCheck start;
+  system_energy(system, start);
+  if (!std::isfinite(start.energy)) {
+    throw make_error("energy budget: the starting energy ", start.energy, " is not finite");
   }
-  record(system, energy);
-  initial_energy_ = energy;
+  record(system, start);
+  initial_energy_ = start.energy;
   work_ = 0.0;
-  moved_ = std::abs(energy);
+  moved_ = std::abs(start.energy);
   extra_.resize(0);
   started_ = true;
 }
@@ -94,7 +105,7 @@ EnergyCheck EnergyBudget::after_step(const System& system, const Eigen::VectorXd
     start(system);
   }
   EnergyCheck check;
-  check.energy = system_energy(system);
+  system_energy(system, check);
   check.growth = check.energy - energy_;
   const Eigen::VectorXd dq = displacement(system, q_, v_, system.time() - time_);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.velocity_count());
@@ -148,7 +159,7 @@ EnergyCheck EnergyBudget::after_step(const System& system, const Eigen::VectorXd
   if (check.passed) {
     work_ += check.step_work;
     moved_ += moved;
-    record(system, check.energy);
+    record(system, check, &forces);
     extra_ = extra_force;
     check.driver = EnergyDriver::kNone;
     check.index = -1;

@@ -52,10 +52,12 @@ struct EnergyCheck {
   double growth = 0.0;     ///< E after minus E before the step
   double step_work = 0.0;  ///< work of all forces in the step
   EnergyDriver driver = EnergyDriver::kNone;
-  int index = -1;              ///< the driving force's or spring's index
-  double driver_work = 0.0;    ///< its work in the step
-  bool not_finite = false;     ///< the energy is not finite
-  bool above_ceiling = false;  ///< the energy exceeds max_energy
+  int index = -1;                 ///< the driving force's or spring's index
+  double driver_work = 0.0;       ///< its work in the step
+  double kinetic_energy = 0.0;    ///< (1/2) qd^T M qd after the step
+  double potential_energy = 0.0;  ///< E_elastic after the step (energy = these + the springs')
+  bool not_finite = false;        ///< the energy is not finite
+  bool above_ceiling = false;     ///< the energy exceeds max_energy
 };
 
 /// The energy budget of a run of one System. Call start at the first state (and after any jump
@@ -83,6 +85,10 @@ class EnergyBudget {
   const EnergyBudgetSettings& settings() const { return settings_; }
   /// The last accepted state's energy.
   double energy() const { return energy_; }
+  /// Its kinetic and elastic parts (System::kinetic_energy and potential_energy at that state),
+  /// so that a caller logging them need not evaluate them again.
+  double kinetic_energy() const { return kinetic_energy_; }
+  double potential_energy() const { return potential_energy_; }
 
  private:
   struct SpringRecord {
@@ -91,7 +97,10 @@ class EnergyBudget {
     SpringState state;
   };
   // Force values, springs and state at the last accepted state.
-  void record(const System& system, double energy);
+  // `forces`: the applied forces at the system's state, when the caller has them (after_step
+  // evaluated them at that very state), moved in instead of being evaluated again.
+  void record(const System& system, const EnergyCheck& energy,
+              std::vector<Eigen::VectorXd>* forces = nullptr);
 
   EnergyBudgetSettings settings_;
   bool started_ = false;
@@ -99,6 +108,8 @@ class EnergyBudget {
   double work_ = 0.0;
   double moved_ = 0.0;  // sum of |work| over steps and contributors
   double energy_ = 0.0;
+  double kinetic_energy_ = 0.0;
+  double potential_energy_ = 0.0;
   double time_ = 0.0;
   Eigen::VectorXd q_, v_, extra_;
   std::vector<Eigen::VectorXd> forces_;

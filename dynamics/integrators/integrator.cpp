@@ -10,10 +10,6 @@ namespace dnurbs {
 
 namespace {
 
-using RowMatrixX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-using NodeMap = Eigen::Map<RowMatrixX3>;
-using ConstNodeMap = Eigen::Map<const RowMatrixX3>;
-
 // The blocks' factorization: the integrator's Cholesky backend under the spring terms.
 LowRankSettings low_rank_settings(const IntegratorSettings& settings) {
   LowRankSettings result;
@@ -134,17 +130,10 @@ void subtract_block_terms(const System& system, bool with_acceleration, Integrat
     const Eigen::Index vo = block->velocity_offset;
     const Eigen::Index vc = block->velocity_count;
     if (block->kronecker) {
-      const ModelMatrices& scalar = *system.model(block->model).scalar_matrices();
-      const Eigen::Index nodes = vc / 3;
-      NodeMap R(w.rhs.data() + vo, nodes, 3);
-      R.noalias() -=
-          scalar.stiffness * ConstNodeMap(w.q_iter.data() + block->coordinate_offset, nodes, 3);
-      if (scalar.damping.nonZeros() > 0) {
-        R.noalias() -= scalar.damping * ConstNodeMap(w.v_iter.data() + vo, nodes, 3);
-      }
-      if (with_acceleration) {
-        R.noalias() -= scalar.mass * ConstNodeMap(w.a.data() + vo, nodes, 3);
-      }
+      // S_K Q + S_D V (+ S_M A) in one pass over the free nodes (fixed rows are not solved)
+      block->residual.subtract({w.q_iter.data() + block->coordinate_offset, w.v_iter.data() + vo,
+                                with_acceleration ? w.a.data() + vo : nullptr},
+                               w.rhs.data() + vo);
     } else {
       if (!block->fused) {
         system.model(block->model)
@@ -204,6 +193,16 @@ int Integrator::block_factorization_count(int model) const {
                      " blocks of the last stepped system");
   }
   return blocks.blocks[static_cast<size_t>(model)]->factorizations;
+}
+
+CholeskyBackend Integrator::block_backend(int model) const {
+  block_factorization_count(model);  // checks the index
+  const StepBlock& block = *work_->blocks.blocks[static_cast<size_t>(model)];
+  if (block.lean_active) {
+    return block.lean.is_supernodal() ? CholeskyBackend::kCholmodSupernodal
+                                      : CholeskyBackend::kSimplicialLdlt;
+  }
+  return block.solver.cholesky().backend();
 }
 
 void Integrator::initial_acceleration(System& system) {
@@ -428,7 +427,7 @@ bool Integrator::refactor_reused_blocks(const System& system) {
     system.model(block->model)
         .assemble_matrices(w.q_iter.segment(block->coordinate_offset, block->coordinate_count),
                            block->matrices);
-    if (!block->factor_lean(c.velocity, c.position)) {
+    if (!block->factor_lean(c.velocity, c.position, block->lean.is_supernodal())) {
       block->factor(system, c.velocity, c.position, /*fold_springs=*/false);
     }
     block->reused = false;
@@ -485,11 +484,12 @@ bool Integrator::assemble_state_dependent_blocks(const System& system, bool refa
     const auto q = w.q_iter.segment(block->coordinate_offset, block->coordinate_count);
     const auto v = w.v_iter.segment(block->velocity_offset, block->velocity_count);
     auto rhs = w.rhs.segment(block->velocity_offset, block->velocity_count);
-    // The lean factorization serves blocks without spring terms on a simplicial backend
-    const bool simplicial = cholesky.backend == CholeskyBackend::kSimplicialLdlt ||
+    // The lean factorization serves blocks without spring terms, by CHOLMOD where the backend
+    // setting picks the supernodal factorization
+    const bool supernodal = cholesky.backend == CholeskyBackend::kCholmodSupernodal ||
                             (cholesky.backend == CholeskyBackend::kAutomatic &&
-                             block->free.free_count() < cholesky.supernodal_threshold);
-    const bool lean = settings_.lean_step && simplicial && block->springs.term_count() == 0;
+                             block->free.free_count() >= cholesky.supernodal_threshold);
+    const bool lean = settings_.lean_step && block->springs.term_count() == 0;
     block->fused = settings_.lean_step;
     block->reused = lean && !refactor && block->lean_active;
     if (block->reused) {
@@ -504,7 +504,7 @@ bool Integrator::assemble_state_dependent_blocks(const System& system, bool refa
     } else {
       model.assemble_matrices(q, block->matrices);
     }
-    if (!lean || !block->factor_lean(c.velocity, c.position)) {
+    if (!lean || !block->factor_lean(c.velocity, c.position, supernodal)) {
       block->factor(system, c.velocity, c.position, fold_springs);
     }
     ++factorization_count_;

@@ -22,7 +22,7 @@
 //
 // A is block diagonal by model (the System stacks the models' M, D, K), so it is factored and
 // solved block by block, one block per model (step_blocks.h), each with SparseCholesky
-// (IntegratorSettings::cholesky; SimplicialLDLT by default):
+// (IntegratorSettings::cholesky; SimplicialLDLT for small blocks, CHOLMOD supernodal for large):
 //   constant blocks (fixed-weight D-NURBS, grid surfaces, snakes) are factored once per
 //   (dt, scheme) and every later solve only back-substitutes; a constant model with the
 //   S (x) I_3 structure is factored as its scalar matrix with x, y, z as three right-hand sides;
@@ -69,9 +69,10 @@ struct IntegratorSettings {
   /// Iterations stop when |delta a| <= newton_tolerance * max(|a|, 1e-300).
   double newton_tolerance = 1e-12;
   /// The lean step of state-dependent blocks (the default): one Model::assemble_step pass per
-  /// iterate (M, D, K, f_int and g together) and, for blocks without springs on a simplicial
-  /// backend, the step matrix assembled into a pattern analyzed once and factored without
-  /// allocation (lean_step_matrix.h). Newton iterations then keep the step's factor while the
+  /// iterate (M, D, K, f_int and g together) and, for blocks without springs, the step matrix
+  /// assembled into a pattern analyzed once and factored numerically only (lean_step_matrix.h;
+  /// by its own L D L^T below the supernodal threshold, without allocation, by CHOLMOD from it
+  /// on). Newton iterations then keep the step's factor while the
   /// corrections contract (modified Newton), their residual from Model::add_step_residual
   /// without assembling: a correction that shrinks by less than kNewtonStallRatio against the
   /// previous one is discarded and solved again with A factored at its iterate. false: separate
@@ -80,10 +81,14 @@ struct IntegratorSettings {
   bool lean_step = true;
   /// How springs enter the step (implicit_springs.h): low-rank terms on the factor by default.
   SpringTreatment springs = SpringTreatment::kLowRank;
-  /// The factorization of each block. SimplicialLDLT by default (the results of every scene
-  /// stay those recorded with it); kAutomatic takes CHOLMOD's supernodal factorization from
-  /// kDefaultSupernodalThreshold free unknowns on, which is faster there.
-  SparseCholeskySettings cholesky{CholeskyBackend::kSimplicialLdlt, kDefaultSupernodalThreshold};
+  /// The factorization of each block: kAutomatic by default, SimplicialLDLT below
+  /// kDefaultSupernodalThreshold free unknowns (scalar unknowns, i.e. free nodes, for a
+  /// Kronecker block; kDefaultConstantSupernodalThreshold for a block with constant matrices,
+  /// factored once) and CHOLMOD's supernodal factorization (OpenBLAS held to one thread,
+  /// core/cholmod_factor.h) from it on, where it factors and solves faster (bench/solver,
+  /// bench/floor). The two backends give the same solution up to rounding (about 1e-15 relative
+  /// per solve).
+  SparseCholeskySettings cholesky{CholeskyBackend::kAutomatic, kDefaultSupernodalThreshold};
 };
 
 /// The linear system of one step, handed to a solve hook (a constraint layer adds its rows
@@ -145,6 +150,12 @@ class Integrator {
   /// the last stepped system's layout (its models) was set up; throws Error naming the index if
   /// that system has no such model.
   int block_factorization_count(int model) const;
+  /// The factorization backend of model `model`'s block (kAutomatic resolved by the block's
+  /// size: free nodes for a Kronecker block, free coordinates otherwise; kAutomatic itself
+  /// before the block is first factored; a block factored by the lean step reports its
+  /// LeanStepMatrix's mode: kSimplicialLdlt for the up-looking L D L^T, kCholmodSupernodal for
+  /// CHOLMOD); throws Error as block_factorization_count.
+  CholeskyBackend block_backend(int model) const;
 
   /// Opaque caches (factorizations and work vectors).
   struct Workspace;

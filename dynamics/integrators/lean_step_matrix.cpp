@@ -31,9 +31,11 @@ bool has_damping(const ModelMatrices& matrices) {
 
 }  // namespace
 
-bool LeanStepMatrix::analyze(const ModelMatrices& matrices, const FreeCoordinates& free) {
+bool LeanStepMatrix::analyze(const ModelMatrices& matrices, const FreeCoordinates& free,
+                             bool supernodal) {
   analyzed_ = false;
   factored_ = false;
+  supernodal_ = supernodal;
   const SparseMatrix& mass = matrices.mass;
   if (!mass.isCompressed() || mass.rows() != free.count() || mass.cols() != free.count() ||
       !same_pattern(mass, matrices.stiffness) ||
@@ -44,6 +46,10 @@ bool LeanStepMatrix::analyze(const ModelMatrices& matrices, const FreeCoordinate
   const int n = free.free_count();
   outer_.assign(mass.outerIndexPtr(), mass.outerIndexPtr() + mass.cols() + 1);
   inner_.assign(mass.innerIndexPtr(), mass.innerIndexPtr() + mass.nonZeros());
+  if (supernodal) {
+    analyze_lower(free);
+    return true;
+  }
 
   // Fill-reducing ordering of the free block: free unknown i becomes unknown position[i] of
   // P A P^T (Eigen's convention, P = (AMD's inverse permutation)^{-1}, as SimplicialLDLT).
@@ -134,10 +140,50 @@ bool LeanStepMatrix::analyze(const ModelMatrices& matrices, const FreeCoordinate
   return true;
 }
 
-bool LeanStepMatrix::fits(const ModelMatrices& matrices) const {
+void LeanStepMatrix::analyze_lower(const FreeCoordinates& free) {
+  // Lower triangle of A in the free unknowns' order: entry (i, j), i >= j, of the model matrices
+  // goes to column free_index(j), row free_index(i); visited by columns, rows ascending, so each
+  // column of lower_ is sorted as CHOLMOD expects.
+  const int n = free.free_count();
+  unknown_of_.assign(static_cast<size_t>(n), 0);
+  std::vector<int> start(static_cast<size_t>(n) + 1, 0);
+  std::vector<int> rows;
+  source_.clear();
+  for (int j = 0; j < free.count(); ++j) {
+    const int fj = free.free_index(j);
+    if (fj < 0) {
+      continue;
+    }
+    unknown_of_[static_cast<size_t>(fj)] = j;
+    for (int p = outer_[static_cast<size_t>(j)]; p < outer_[static_cast<size_t>(j) + 1]; ++p) {
+      const int i = inner_[static_cast<size_t>(p)];
+      const int fi = i >= j ? free.free_index(i) : -1;
+      if (fi >= 0) {
+        rows.push_back(fi);
+        source_.push_back(p);
+        ++start[static_cast<size_t>(fj) + 1];
+      }
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    start[static_cast<size_t>(k) + 1] += start[static_cast<size_t>(k)];
+  }
+  lower_.resize(n, n);
+  lower_.resizeNonZeros(static_cast<Eigen::Index>(rows.size()));
+  std::copy(start.begin(), start.end(), lower_.outerIndexPtr());
+  std::copy(rows.begin(), rows.end(), lower_.innerIndexPtr());
+  std::fill(lower_.valuePtr(), lower_.valuePtr() + rows.size(), 0.0);
+  cholmod_ = CholmodFactor();
+  cholmod_.analyze(lower_);
+  column_.setZero(n);
+  analyzed_ = true;
+}
+
+bool LeanStepMatrix::fits(const ModelMatrices& matrices, bool supernodal) const {
   // The full comparison for the mass; the others share the model's pattern when their column
   // starts agree (a model assembles all three into one pattern, analyze() checked it).
-  return analyzed_ && matrices.mass.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
+  return analyzed_ && supernodal == supernodal_ &&
+         matrices.mass.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
          matrices.mass.nonZeros() == static_cast<Eigen::Index>(inner_.size()) &&
          matrices.mass.isCompressed() &&
          std::equal(outer_.begin(), outer_.end(), matrices.mass.outerIndexPtr()) &&
@@ -158,6 +204,7 @@ void LeanStepMatrix::factorize(const ModelMatrices& matrices, double damping_coe
   const double* stiffness = matrices.stiffness.valuePtr();
   const bool damped = damping_coefficient != 0.0 && has_damping(matrices);
   const double* damping = damped ? matrices.damping.valuePtr() : nullptr;
+  double* values = supernodal_ ? lower_.valuePtr() : upper_value_.data();
   for (size_t e = 0; e < source_.size(); ++e) {
     const int p = source_[e];
     double value = mass[p];
@@ -167,7 +214,12 @@ void LeanStepMatrix::factorize(const ModelMatrices& matrices, double damping_coe
     if (damped) {
       value += damping_coefficient * damping[p];
     }
-    upper_value_[e] = value;
+    values[e] = value;
+  }
+  if (supernodal_) {
+    cholmod_.factorize(lower_);  // throws Error naming the free column of a non-positive pivot
+    factored_ = true;
+    return;
   }
   // Up-looking L D L^T, row k of L from the sparse triangular solve along the elimination tree
   // (Davis 2005, ldl_numeric)
@@ -223,6 +275,16 @@ void LeanStepMatrix::solve(const double* r, double* x) {
     throw make_error("LeanStepMatrix::solve without a factorization");
   }
   const auto n = static_cast<int>(unknown_of_.size());
+  if (supernodal_) {
+    for (int k = 0; k < n; ++k) {
+      column_[k] = r[unknown_of_[static_cast<size_t>(k)]];
+    }
+    cholmod_.solve_in_place(column_);
+    for (int k = 0; k < n; ++k) {
+      x[unknown_of_[static_cast<size_t>(k)]] = column_[k];
+    }
+    return;
+  }
   for (int k = 0; k < n; ++k) {
     work_[static_cast<size_t>(k)] = r[unknown_of_[static_cast<size_t>(k)]];
   }

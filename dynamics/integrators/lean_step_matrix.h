@@ -15,11 +15,18 @@
 // factorize() (every refactorization): the values of P A P^T from M, D, K in one pass, then the
 // up-looking numeric factorization of the same paper (ldl_numeric) into the pre-sized L.
 // solve(): P^T L^{-T} D^{-1} L^{-1} P r in a kept workspace.
+//
+// Supernodal mode (analyze with `supernodal`, for blocks above the supernodal threshold,
+// core/sparse_cholesky.h): the same one-pass assembly into the lower triangle of A in the free
+// unknowns' order, held as a compressed matrix whose pattern is fixed, factored and solved by
+// CHOLMOD (core/cholmod_factor.h: its own ordering and symbolic analysis, done at the first
+// factorization and kept).
 
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "core/cholmod_factor.h"
 #include "core/fixed_coordinates.h"
 #include "dynamics/core/model.h"
 
@@ -29,10 +36,12 @@ class LeanStepMatrix {
  public:
   /// Prepares for model matrices with the pattern of `matrices.mass` (n by n, compressed, both
   /// triangles stored, n = free.count()): false, and nothing prepared, unless the stiffness (and
-  /// a non-empty damping) share that pattern exactly. Allocates; call when fits() is false.
-  bool analyze(const ModelMatrices& matrices, const FreeCoordinates& free);
-  /// True if analyze() succeeded for matrices of exactly this pattern (O(nnz) comparison).
-  bool fits(const ModelMatrices& matrices) const;
+  /// a non-empty damping) share that pattern exactly. `supernodal`: factor with CHOLMOD (see the
+  /// file comment) instead of the up-looking L D L^T. Allocates; call when fits() is false.
+  bool analyze(const ModelMatrices& matrices, const FreeCoordinates& free, bool supernodal);
+  /// True if analyze() succeeded for matrices of exactly this pattern and mode (O(nnz)
+  /// comparison).
+  bool fits(const ModelMatrices& matrices, bool supernodal) const;
 
   /// A = M + c_D D + c_K K (D skipped when empty or c_D = 0) on the free rows, factored. Throws
   /// Error naming the free unknown if a pivot is not positive and finite (A must be symmetric
@@ -46,11 +55,14 @@ class LeanStepMatrix {
   void solve(const double* r, double* x);
 
   bool is_factored() const { return factored_; }
+  bool is_supernodal() const { return supernodal_; }
   /// Symbolic analyses and numeric factorizations so far (tests check the reuse).
   int analysis_count() const { return analyses_; }
   int factorization_count() const { return factorizations_; }
 
  private:
+  // Supernodal mode's analysis: lower_, source_ and unknown_of_ from the kept pattern.
+  void analyze_lower(const FreeCoordinates& free);
   // The analyzed pattern of the model matrices (compared by fits()).
   std::vector<int> outer_;
   std::vector<int> inner_;
@@ -72,6 +84,12 @@ class LeanStepMatrix {
   std::vector<int> flag_;
   std::vector<int> stack_;
   std::vector<double> work_;
+  // Supernodal mode: the lower triangle of A on the free unknowns (values filled from source_),
+  // CHOLMOD's factor and a solve column.
+  SparseMatrix lower_;
+  CholmodFactor cholmod_;
+  Eigen::VectorXd column_;
+  bool supernodal_ = false;
   bool analyzed_ = false;
   bool factored_ = false;
   int analyses_ = 0;

@@ -36,7 +36,10 @@ Error factorization_error(int model, Eigen::Index unknowns, const Error& error) 
 }
 
 LowRankSettings block_settings(LowRankSettings settings, bool constant) {
-  if (!constant) {
+  if (constant) {
+    // Factored once, solved every step: the solve-only crossover (core/sparse_cholesky.h)
+    settings.cholesky.supernodal_threshold = settings.cholesky.constant_supernodal_threshold;
+  } else {
     // Refactored at every iterate, and every term moves with L(q): folding would only refactor
     // once more.
     settings.max_woodbury_terms = std::numeric_limits<int>::max();
@@ -60,6 +63,11 @@ StepBlock::StepBlock(const System& system, int index, const LowRankSettings& set
               velocity_count % 3 == 0 && coordinate_count == velocity_count && nodes;
   free = kronecker ? FreeCoordinates(velocity_count / 3, *nodes)
                    : FreeCoordinates(velocity_count, fixed);
+  if (kronecker) {
+    const ModelMatrices& scalar = *m.scalar_matrices();
+    residual =
+        FreeRowProduct({&scalar.stiffness, &scalar.damping, &scalar.mass}, free.free_unknowns(), 3);
+  }
   solver = LowRankUpdate(block_settings(settings, constant));
 }
 
@@ -95,8 +103,9 @@ void StepBlock::factor(const System& system, double damping_coefficient,
   factored = true;
 }
 
-bool StepBlock::factor_lean(double damping_coefficient, double stiffness_coefficient) {
-  if (!lean.fits(matrices) && !lean.analyze(matrices, free)) {
+bool StepBlock::factor_lean(double damping_coefficient, double stiffness_coefficient,
+                            bool supernodal) {
+  if (!lean.fits(matrices, supernodal) && !lean.analyze(matrices, free, supernodal)) {
     return false;
   }
   factored = false;

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "core/fixed_coordinates.h"
+#include "core/free_row_product.h"
 #include "core/low_rank_update.h"
 #include "dynamics/core/system.h"
 #include "dynamics/integrators/implicit_springs.h"
@@ -55,6 +56,9 @@ struct StepBlock {
   /// came from Model::add_step_residual and `matrices` are those of the factored iterate.
   bool reused = false;
   LeanStepMatrix lean;
+  /// Kronecker blocks: b -= S_K Q + S_D V + S_M A on the free nodes, one pass over the scalar
+  /// matrices' shared pattern (matrices in that order; node by 3 arrays).
+  FreeRowProduct residual;
   Eigen::MatrixXd rhs_free;
 
   /// The block of model `index` of `system`; `settings` choose the factorization (state-dependent
@@ -76,8 +80,9 @@ struct StepBlock {
 
   /// The same factorization by `lean` (state-dependent blocks without springs): analyzes when the
   /// pattern of `matrices` is new; false, leaving the block as it was, when `lean` cannot take
-  /// that pattern (then factor() serves). The Error of a failed factorization names the model.
-  bool factor_lean(double damping_coefficient, double stiffness_coefficient);
+  /// that pattern (then factor() serves). `supernodal`: CHOLMOD factors the lean matrix
+  /// (LeanStepMatrix's supernodal mode). The Error of a failed factorization names the model.
+  bool factor_lean(double damping_coefficient, double stiffness_coefficient, bool supernodal);
 
   /// x = A_ff^{-1} r on the block's free unknowns, zero on its fixed ones (block segments of the
   /// stacked vectors r and x, both velocity_count of the System).

@@ -322,16 +322,11 @@ void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef for
                  });
 }
 
-double TriangularDNurbsSurface::potential_energy(ConstVectorRef q) const {
-  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2: with fixed weights x^alpha = J_alpha q and
-  // the constant K holds the same quadrature sum, E = (1/2) q^T K q (no basis evaluation).
+double TriangularDNurbsSurface::quadrature_potential_energy(ConstVectorRef q) const {
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 at the quadrature points.
   double energy = 0.0;
   if (stiffness_order() == 0) {
     return energy;
-  }
-  if (mode_ == WeightMode::kFixed) {
-    check_coordinates(q);
-    return 0.5 * q.dot(expanded_.stiffness * q);
   }
   for_each_point(control_net(q), stiffness_order(), false,
                  [&](int p, const TriangularBasisValues&,

@@ -83,9 +83,6 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
   /// Fixed weights: -K q with the constant K; free weights: -integral sum_alpha k_alpha
   /// J_alpha^T x^alpha by the Dunavant rule on every polynomial cell.
   void add_internal_force(ConstVectorRef q, VectorRef force) const override;
-  /// E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 over the triangulated domain ((1/2) q^T K q
-  /// with the constant K for fixed weights).
-  double potential_energy(ConstVectorRef q) const override;
   /// g = -integral mu J^T Jdot qd (free weights; nothing for fixed weights).
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
   /// integral J^T f(u) over the triangulated domain, f per unit parametric area, by the
@@ -154,6 +151,8 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
                    bool weight_columns, TriangularRationalJacobian& jacobian,
                    TriangularBasisValues& values) const;
   void assemble_scalar(ModelMatrices& scalar) const override;
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 over the triangulated domain.
+  double quadrature_potential_energy(ConstVectorRef q) const override;
   void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
 
   TriangularNurbsSurface surface_;

@@ -149,33 +149,15 @@ void TriangularDNurbsSurface::tangent_kinematics(ConstVectorRef q, ConstVectorRe
   tangents.sv = jacobian.point[2];
   // Columns of every listed B-spline (ascending: the basis lists them in index order), their
   // blocks of J_u and J_v, and the rates J_u qd, J_v qd
-  const int count = values.count * per_control_point_;
-  tangents.columns.resize(static_cast<size_t>(count));
-  tangents.ju.setZero(3, count);
-  tangents.jv.setZero(3, count);
-  tangents.su_rate.setZero();
-  tangents.sv_rate.setZero();
+  start_tangent_columns(values.count, tangents);
+  const Eigen::Vector3d no_weight_column = Eigen::Vector3d::Zero();
   for (int a = 0; a < values.count; ++a) {
-    const int offset = values.function[static_cast<size_t>(a)] * per_control_point_;
-    const int column = a * per_control_point_;
-    const Eigen::Vector3d point_rate = qd.segment<3>(offset);
-    tangents.su_rate += jacobian.rational(1, a) * point_rate;
-    tangents.sv_rate += jacobian.rational(2, a) * point_rate;
-    for (int r = 0; r < 3; ++r) {
-      tangents.columns[static_cast<size_t>(column + r)] = offset + r;
-      tangents.ju(r, column + r) = jacobian.rational(1, a);
-      tangents.jv(r, column + r) = jacobian.rational(2, a);
-    }
-    if (free) {
-      tangents.columns[static_cast<size_t>(column + 3)] = offset + 3;
-      tangents.ju.col(column + 3) = jacobian.weight_column[1].col(a);
-      tangents.jv.col(column + 3) = jacobian.weight_column[2].col(a);
-      tangents.su_rate += jacobian.weight_column[1].col(a) * qd[offset + 3];
-      tangents.sv_rate += jacobian.weight_column[2].col(a) * qd[offset + 3];
-    }
+    add_tangent_columns(a, values.function[static_cast<size_t>(a)], jacobian.rational(1, a),
+                        jacobian.rational(2, a),
+                        free ? Eigen::Vector3d(jacobian.weight_column[1].col(a)) : no_weight_column,
+                        free ? Eigen::Vector3d(jacobian.weight_column[2].col(a)) : no_weight_column,
+                        qd, tangents);
   }
-  tangents.su_bias.setZero();
-  tangents.sv_bias.setZero();
   if (free) {
     const std::array<Eigen::Vector3d, 2> bias = tangent_biases(values, net, qd, 4);
     tangents.su_bias = bias[0];

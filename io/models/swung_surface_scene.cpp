@@ -17,29 +17,6 @@
 namespace dnurbs {
 namespace {
 
-// The surface material's scene keys (docs/scene-format.md, as for "dnurbs_surface").
-struct MaterialKey {
-  const char* key;
-  MaterialFunction DNurbsSurfaceMaterial::*value;
-};
-constexpr std::array<MaterialKey, 7> kMaterialKeys{{
-    {"mass_density", &DNurbsSurfaceMaterial::mass_density},
-    {"damping_density", &DNurbsSurfaceMaterial::damping_density},
-    {"a10", &DNurbsSurfaceMaterial::a10},
-    {"a01", &DNurbsSurfaceMaterial::a01},
-    {"b20", &DNurbsSurfaceMaterial::b20},
-    {"b11", &DNurbsSurfaceMaterial::b11},
-    {"b02", &DNurbsSurfaceMaterial::b02},
-}};
-
-JsonOut material_json(const DNurbsSurfaceMaterial& material) {
-  JsonOut json;
-  for (const MaterialKey& key : kMaterialKeys) {
-    json[key.key] = (material.*key.value)(Eigen::Vector2d::Zero());
-  }
-  return json;
-}
-
 // The prototype kinds and the keys each reads besides "kind".
 struct PrototypeKind {
   const char* kind;
@@ -229,7 +206,7 @@ void SceneSwungSurface::write(JsonOut& model) const {
   model["fix_profile"] = fix_profile;
   model["fix_trajectory"] = fix_trajectory;
   model["fix_poles"] = fix_poles;
-  model["material"] = material_json(material);
+  model["material"] = dnurbs_surface_material_json(material);
   write_settings(settings, model);
 }
 
@@ -258,7 +235,7 @@ SceneSwungSurface::naive_variant() const {
   JsonOut json;
   json["type"] = "dnurbs_surface";
   json["shape"] = JsonOut::parse(shape_to_json(Shape(twin)));
-  json["material"] = material_json(material);
+  json["material"] = dnurbs_surface_material_json(material);
   DNurbsSettings common;
   common.weight_mode = settings.weight_mode;
   common.minimum_weight = settings.minimum_weight;
@@ -281,15 +258,8 @@ std::unique_ptr<SceneModelSpec> read_swung_surface_scene(const SceneReader& read
                     "fix_trajectory", "fix_poles", "weights", "quadrature_points", "minimum_weight",
                     "geometric_stiffness", "separable_assembly", "weight_inertia"});
   auto spec = std::make_unique<SceneSwungSurface>();
-  // Material -----------------------------------------------------------------------------------
-  const JsonValue material = model_material(
-      reader, model, path, {"mass_density", "damping_density", "a10", "a01", "b20", "b11", "b02"});
-  const std::string material_path = join_json_path(path, "material");
-  for (const MaterialKey& key : kMaterialKeys) {
-    double value = (spec->material.*key.value)(Eigen::Vector2d::Zero());
-    reader.number_key(material, material_path, key.key, value, 0.0, false);
-    spec->material.*key.value = value;
-  }
+  // Material (the keys of "dnurbs_surface") ---------------------------------------------------
+  read_dnurbs_surface_material(reader, model, path, spec->material);
   read_settings(reader, model, path, spec->settings);
 
   // The shape: a prototype, or the two curves --------------------------------------------------

@@ -100,6 +100,39 @@ TEST(DNurbsCurveStiffness, PotentialEnergyIsHalfQTransposeKQ) {
   EXPECT_NEAR(model.potential_energy(q), expected, 1e-13 * std::abs(expected));  // round-off
 }
 
+TEST(DNurbsCurveStiffness, EnergyChangeOfAFarStraightRodKeepsItsDigits) {
+  // A straight rod x(u) = c + 2 u e_x (linear parametrization: control points at the Greville
+  // abscissae), far from the origin (c = 1e3 (1, 1, 0)), bent by d = 1e-3 phi in z only. Exactly,
+  // E(q0) = (1/2) w1 |x_u|^2 length = (1/2) w1 4 and, as x0_u . d_u = 0 and x0_uu = 0,
+  // E(q0 + d) - E(q0) = (1/2) d^T K d. The plain form (1/2) q^T K q would lose that change to
+  // the rounding of its 1e6-size terms (eps |K| |q|^2 ~ 1e-8, the change ~ 1e-6); the model
+  // expands about q0, which keeps the rounding of the small terms only.
+  DNurbsCurveMaterial material;
+  material.tension = 1.5;
+  material.rigidity = 0.25;
+  const KnotVector knots = KnotVector::clamped_from_breakpoints(3, {0.0, 0.25, 0.5, 0.75, 1.0});
+  Eigen::MatrixX3d points(knots.control_point_count(), 3);
+  for (int i = 0; i < points.rows(); ++i) {
+    const double greville = (knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3.0;
+    points.row(i) << 1e3 + 2.0 * greville, 1e3, 0.0;
+  }
+  const DNurbsCurve model(NurbsCurve(knots, points), material);
+  const Eigen::VectorXd q0 = model.initial_coordinates();
+  // E(q0) by quadrature: x_u = sum_i N_i' P_i rounds by eps sum_i |N_i'| |P_i| <= eps 1e3 2 p / h
+  // (h = 0.25: ~5e-12 against |x_u| = 2), so |x_u|^2 and E(q0) = 3 to ~5e-12 relative.
+  EXPECT_NEAR(model.potential_energy(q0), 0.5 * 1.5 * 4.0, 3.0 * 1e-11);
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(q0.size());
+  for (int i = 0; i < points.rows(); ++i) {
+    d[3 * i + 2] = 1e-3 * std::sin(0.7 * i + 0.3);
+  }
+  const double change = model.potential_energy(q0 + d) - model.potential_energy(q0);
+  const double expected = 0.5 * d.dot(model.constant_matrices()->stiffness * d);
+  // Both sides round terms of size |K| |d|^2 ~ 1e-6, and the difference rounds E ~ 3: a few
+  // ulps of 3 (1e-14 absolute), against the change ~ 1e-6.
+  EXPECT_NEAR(change, expected, 1e-14 * 3.0);
+  EXPECT_GT(expected, 1e-7);  // the change is resolved, not rounding
+}
+
 // Relative errors of the first five eigenvalues of K phi = lambda M phi (scalar matrices,
 // `clamped` control points fixed at each end) against the exact ones.
 Eigen::VectorXd eigenvalue_errors(int degree, int spans, bool beam) {

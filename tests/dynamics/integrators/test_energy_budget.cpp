@@ -158,6 +158,28 @@ TEST(EnergyBudget, NegativeNumericalDampingIsNamedAsTheSetting) {
   EXPECT_NE(setting.find("newmark_gamma = 0.05"), std::string::npos) << setting;
 }
 
+TEST(EnergyBudget, KeepsTheKineticAndElasticPartsOfTheAcceptedState) {
+  // The parts are System::kinetic_energy and potential_energy at the accepted state, bit for bit
+  // (the scene log reads them instead of evaluating them again), and they sum with the springs'
+  // energy to the checked energy.
+  System system = clamped_sheet(0.5);
+  system.add_force(0, point_force(Eigen::Vector2d(0.3, 0.6), Eigen::Vector3d(0.0, 0.0, 1.0)));
+  Integrator integrator;
+  EnergyBudget budget;
+  budget.start(system);
+  EXPECT_EQ(budget.kinetic_energy(), system.kinetic_energy());
+  EXPECT_EQ(budget.potential_energy(), system.potential_energy());
+  for (int n = 0; n < 20; ++n) {
+    integrator.step(system, 0.02);
+    const EnergyCheck check = budget.after_step(system);
+    ASSERT_TRUE(check.passed);
+    EXPECT_EQ(budget.kinetic_energy(), system.kinetic_energy());
+    EXPECT_EQ(budget.potential_energy(), system.potential_energy());
+    EXPECT_EQ(check.energy, check.kinetic_energy + check.potential_energy + system.spring_energy());
+  }
+  EXPECT_GT(budget.kinetic_energy(), 0.0);
+}
+
 TEST(EnergyBudget, BadSettingsThrow) {
   EXPECT_THROW(EnergyBudget({-1.0, 1e12}), Error);
   EXPECT_THROW(EnergyBudget({std::nan(""), 1e12}), Error);

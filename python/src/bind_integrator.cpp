@@ -1,0 +1,97 @@
+// dnurbs.Integrator (dynamics/integrators/integrator.h), solve_static_equilibrium
+// (dynamics/integrators/static_equilibrium.h) and dnurbs.TargetTrajectory
+// (constraints/target_trajectory.h); bind_constraints.cpp binds the ConstraintSolver.
+
+#include <pybind11/stl.h>
+
+#include "constraints/target_trajectory.h"
+#include "dynamics/integrators/integrator.h"
+#include "dynamics/integrators/static_equilibrium.h"
+#include "python/src/bindings.h"
+#include "python/src/numpy_arrays.h"
+
+namespace dnurbs::python {
+
+namespace {
+
+Integrator make_integrator(const std::string& scheme, int newton_iterations,
+                           double newton_tolerance, double newmark_beta, double newmark_gamma) {
+  IntegratorSettings settings;
+  settings.scheme = parse_integrator_scheme(scheme);
+  settings.newton_iterations = newton_iterations;
+  settings.newton_tolerance = newton_tolerance;
+  settings.newmark_beta = newmark_beta;
+  settings.newmark_gamma = newmark_gamma;
+  return Integrator(settings);
+}
+
+TargetTrajectory keyframes(const py::object& times, const py::object& points) {
+  const std::vector<double> keys = list_from_array(times, "times");
+  const Eigen::MatrixXd values =
+      matrix_from_array(points, "points", static_cast<long>(keys.size()), 3);
+  std::vector<Eigen::Vector3d> positions;
+  for (Eigen::Index i = 0; i < values.rows(); ++i) {
+    positions.emplace_back(values.row(i).transpose());
+  }
+  return TargetTrajectory::keyframes(keys, positions);
+}
+
+}  // namespace
+
+void bind_integrator(py::module_& module) {
+  py::class_<Integrator>(
+      module, "Integrator",
+      "Time integration of M qdd + D qd + K q = f + g (central: Terzopoulos, Deformable Models, "
+      "eq. 1.13; implicit-euler; newmark: average acceleration). Constant blocks are factored "
+      "once; springs are implicit.")
+      .def(py::init(&make_integrator), py::arg("scheme") = "newmark",
+           py::arg("newton_iterations") = 0, py::arg("newton_tolerance") = 1e-12,
+           py::arg("newmark_beta") = 0.25, py::arg("newmark_gamma") = 0.5,
+           "scheme: 'central', 'implicit-euler' or 'newmark'.")
+      .def(
+          "step",
+          [](Integrator& self, System& system, double dt, int count) {
+            for (int i = 0; i < count; ++i) {
+              self.step(system, dt);
+            }
+          },
+          py::arg("system"), py::arg("dt"), py::arg("count") = 1,
+          "Advances `system` `count` steps of dt (the loop runs in C++). Raises dnurbs.Error "
+          "(state untouched) for dt <= 0 or a non-finite state.")
+      .def_property_readonly(
+          "scheme",
+          [](const Integrator& self) { return std::string(to_string(self.settings().scheme)); },
+          "The scheme: central, implicit-euler or newmark.")
+      .def_property_readonly("last_newton_iterations", &Integrator::last_newton_iterations,
+                             "Newton iterations of the last step (0: linearly implicit).")
+      .def_property_readonly("factorization_count", &Integrator::factorization_count,
+                             "Block factorizations of the step matrix so far.");
+  module.def("solve_static_equilibrium", &solve_static_equilibrium, py::arg("system"),
+             "Solves K q = f on the free coordinates (springs exact), sets q with zero "
+             "velocity. Constant-matrix systems only; raises dnurbs.Error if K_ff is singular.");
+  py::class_<TargetTrajectory>(module, "TargetTrajectory",
+                               "A moving target point x(t) with velocity and acceleration.")
+      .def_static(
+          "fixed",
+          [](const py::object& point) {
+            return TargetTrajectory::fixed(matrix_from_array(point, "point", 1, 3, true).row(0));
+          },
+          py::arg("point"), "A target at rest at `point` (3,).")
+      .def_static("keyframes", &keyframes, py::arg("times"), py::arg("points"),
+                  "Keyframes: times (k,) strictly increasing, points (k, 3), interpolated by a "
+                  "natural cubic spline; before the first and after the last the target rests.")
+      .def(
+          "__call__",
+          [](const TargetTrajectory& self, double time) {
+            return array_from_vector(self.position(time));
+          },
+          py::arg("t"), "x(t), (3,).")
+      .def(
+          "velocity",
+          [](const TargetTrajectory& self, double time) {
+            return array_from_vector(self.velocity(time));
+          },
+          py::arg("t"), "xdot(t), (3,).");
+}
+
+}  // namespace dnurbs::python

@@ -1,0 +1,347 @@
+// The vision kernel (vision/): dnurbs.Image and dnurbs.Volume with their files, Gaussian
+// smoothing, edge potentials P = -c |grad(G_sigma * I)|, contours, the topology-adaptive T-snakes
+// and T-surfaces (McInerney & Terzopoulos, T-snakes: topology adaptive snakes, Medical Image
+// Analysis 4, 2000), and image forces on snakes and grid surfaces (dynamics/grid/snake.h;
+// Terzopoulos, Deformable Models, eqs. 1.3-1.5).
+//
+// Images cross as NumPy arrays of shape (height, width), pixel [y, x] (row y, column x); volumes
+// as (nz, ny, nx), voxel [z, y, x]. Points in images are (x, y) in pixel units, in volumes
+// (x, y, z) in voxel units, as the library's.
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include "dynamics/grid/snake.h"
+#include "python/src/bindings.h"
+#include "python/src/model_arguments.h"
+#include "python/src/numpy_arrays.h"
+#include "vision/contour.h"
+#include "vision/gaussian_filter.h"
+#include "vision/t_snake.h"
+#include "vision/t_surface.h"
+
+namespace dnurbs::python {
+
+namespace {
+
+Image image_from_array(const py::object& pixels) {
+  const Eigen::MatrixXd values = matrix_from_array(pixels, "pixels", -1, -1);
+  Image image(static_cast<int>(values.cols()), static_cast<int>(values.rows()));
+  image.values = values.transpose().array();
+  return image;
+}
+
+py::array_t<double> image_pixels(const Image& image) {
+  return array_from_matrix(image.values.matrix().transpose());
+}
+
+Volume volume_from_array(const py::object& voxels) {
+  const py::array_t<double, py::array::c_style> values = parameter_array(voxels, "voxels");
+  if (values.ndim() != 3) {
+    throw make_error("voxels has ", values.ndim(), " dimensions, must be 3 (nz, ny, nx)");
+  }
+  Volume volume(static_cast<int>(values.shape(2)), static_cast<int>(values.shape(1)),
+                static_cast<int>(values.shape(0)));
+  std::copy(values.data(), values.data() + values.size(), volume.values.begin());
+  return volume;
+}
+
+py::array_t<double> volume_voxels(const Volume& volume) {
+  py::array_t<double> result({static_cast<py::ssize_t>(volume.size[2]),
+                              static_cast<py::ssize_t>(volume.size[1]),
+                              static_cast<py::ssize_t>(volume.size[0])});
+  std::copy(volume.values.begin(), volume.values.end(), result.mutable_data());
+  return result;
+}
+
+// The parameters of T-snakes and T-surfaces from keyword arguments; Error naming an unknown key.
+template <typename Parameters>
+Parameters adaptive_parameters(const py::kwargs& options) {
+  Parameters parameters;
+  for (const auto& [key, value] : options) {
+    const auto name = py::cast<std::string>(key);
+    if (name == "steps_per_reparameterization") {
+      parameters.steps_per_reparameterization = py::cast<int>(value);
+      continue;
+    }
+    double* field = name == "cell_size"        ? &parameters.cell_size
+                    : name == "tension"        ? &parameters.tension
+                    : name == "rigidity"       ? &parameters.rigidity
+                    : name == "damping"        ? &parameters.damping
+                    : name == "time_step"      ? &parameters.time_step
+                    : name == "inflation"      ? &parameters.inflation
+                    : name == "threshold"      ? &parameters.threshold
+                    : name == "inflation_band" ? &parameters.inflation_band
+                    : name == "edge_weight"    ? &parameters.edge_weight
+                                               : nullptr;
+    if (field == nullptr) {
+      throw make_error("unknown parameter \"", name,
+                       "\" (cell_size, tension, rigidity, damping, time_step, inflation, "
+                       "threshold, inflation_band, edge_weight, steps_per_reparameterization)");
+    }
+    *field = py::cast<double>(value);
+  }
+  return parameters;
+}
+
+Contour contour_argument(const py::object& value) {
+  return matrix_from_array(value, "contour", -1, 2);
+}
+
+std::vector<Contour> contour_list(const std::vector<py::object>& values) {
+  std::vector<Contour> contours;
+  contours.reserve(values.size());
+  for (const py::object& value : values) {
+    contours.push_back(contour_argument(value));
+  }
+  return contours;
+}
+
+py::list contour_arrays(const std::vector<Contour>& contours) {
+  py::list result;
+  for (const Contour& contour : contours) {
+    result.append(array_from_matrix(contour));
+  }
+  return result;
+}
+
+template <int Dimension>
+void bind_edge_potential(py::module_& module, const char* name, const char* doc) {
+  using P = EdgePotential<Dimension>;
+  using Point = typename P::Point;
+  const auto per_point = [](const P& self, const py::object& points, bool gradient, bool smoothed) {
+    const ItemArray items = item_array(points, "points", Dimension);
+    py::array_t<double> result = gradient ? new_result(items, {Dimension}) : new_result(items, {});
+    for (py::ssize_t i = 0; i < items.count; ++i) {
+      const Point point = Eigen::Map<const Point>(items.item(i));
+      if (gradient) {
+        Eigen::Map<Point>(result.mutable_data() + Dimension * i) = self.gradient(point);
+      } else {
+        result.mutable_data()[i] = smoothed ? self.smoothed_intensity(point) : self.value(point);
+      }
+    }
+    return result;
+  };
+  py::class_<P>(module, name, doc)
+      .def(
+          "value",
+          [per_point](const P& self, const py::object& points) {
+            return per_point(self, points, false, false);
+          },
+          py::arg("points"), "P at points (..., d) -> (...).")
+      .def(
+          "gradient",
+          [per_point](const P& self, const py::object& points) {
+            return per_point(self, points, true, false);
+          },
+          py::arg("points"),
+          "grad P (the exact gradient of the interpolant) at points (..., d) -> (..., d).")
+      .def(
+          "smoothed_intensity",
+          [per_point](const P& self, const py::object& points) {
+            return per_point(self, points, false, true);
+          },
+          py::arg("points"), "(G_sigma * I) at points (..., d) -> (...).");
+}
+
+void bind_images(py::module_& module) {
+  py::class_<Image>(module, "Image",
+                    "A greyscale image with float intensities (files read to [0, 1]).")
+      .def(py::init(&image_from_array), py::arg("pixels"),
+           "pixels: (height, width), pixel [y, x]; copied.")
+      .def_property_readonly("width", &Image::width, "Columns.")
+      .def_property_readonly("height", &Image::height, "Rows.")
+      .def_property_readonly("pixels", &image_pixels, "The pixels, (height, width): a new array.");
+  py::class_<Volume>(module, "Volume", "A greyscale volume with float intensities.")
+      .def(py::init(&volume_from_array), py::arg("voxels"),
+           "voxels: (nz, ny, nx), voxel [z, y, x]; copied.")
+      .def_property_readonly(
+          "size", [](const Volume& self) { return self.size; }, "(nx, ny, nz).")
+      .def_property_readonly("voxels", &volume_voxels, "The voxels, (nz, ny, nx): a new array.")
+      .def_property_readonly(
+          "spacing", [](const Volume& self) { return array_from_vector(self.spacing); },
+          "Distances between voxel centres (x, y, z), (3,) (from NRRD spacings).");
+  module.def("read_nrrd", &read_nrrd, py::arg("path"),
+             "Reads a 3-D NRRD file (integer or float types; raw, ascii or gzip encodings) into "
+             "a Volume, values as stored.");
+  module.def("write_nrrd", &write_nrrd, py::arg("volume"), py::arg("path"),
+             "Writes a Volume as NRRD with raw little-endian doubles (an exact round trip).");
+  module.def("read_volume_slices", &read_volume_slices, py::arg("paths"),
+             "A Volume from a list of PNG or PGM slices (slice k at z = k), values in [0, 1].");
+  module.def("read_image", &read_image, py::arg("path"),
+             "Reads a PNG or PGM file (8 or 16 bit; colour to grey) into an Image in [0, 1].");
+  module.def("write_png", &write_png, py::arg("image"), py::arg("path"), py::arg("bit_depth") = 8,
+             "Writes an Image as a greyscale PNG (values clamped to [0, 1]).");
+  module.def("write_pgm", &write_pgm, py::arg("image"), py::arg("path"), py::arg("bit_depth") = 8,
+             "Writes an Image as a binary PGM (values clamped to [0, 1]).");
+  module.def(
+      "gaussian_kernel", [](double sigma) { return array_from_vector(gaussian_kernel(sigma)); },
+      py::arg("sigma"),
+      "The sampled normalized Gaussian on taps -r..r, r = ceil(5 sigma): (2 r + 1,).");
+  module.def(
+      "gaussian_smooth",
+      [](const Image& image, double sigma) { return gaussian_smooth(image, sigma); },
+      py::arg("image"), py::arg("sigma"), "G_sigma * I (borders repeat): an Image.");
+  bind_edge_potential<2>(module, "ImageEdgePotential",
+                         "P = -c |grad(G_sigma * I)| of an Image, Catmull-Rom interpolated; "
+                         "points are (x, y) in pixels.");
+  bind_edge_potential<3>(module, "VolumeEdgePotential",
+                         "P = -c |grad(G_sigma * V)| of a Volume; points are (x, y, z) in voxels.");
+  module.def(
+      "image_edge_potential",
+      [](const Image& image, double sigma, double c) {
+        return ImageEdgePotential(image, sigma, c);
+      },
+      py::arg("image"), py::arg("sigma"), py::arg("c") = 1.0,
+      "The ImageEdgePotential of an Image (sigma in [0, 256] pixels).");
+  module.def(
+      "volume_edge_potential",
+      [](const Volume& volume, double sigma, double c) {
+        return VolumeEdgePotential(volume, sigma, c);
+      },
+      py::arg("volume"), py::arg("sigma"), py::arg("c") = 1.0, "The VolumeEdgePotential.");
+  module.def(
+      "signed_area",
+      [](const py::object& contour) { return signed_area(contour_argument(contour)); },
+      py::arg("contour"), "Shoelace area of a closed polygon (N, 2): > 0 counter-clockwise.");
+  module.def(
+      "winding_number",
+      [](const std::vector<py::object>& contours, const py::object& point) {
+        return winding_number(contour_list(contours),
+                              matrix_from_array(point, "point", 1, 2, true).row(0).transpose());
+      },
+      py::arg("contours"), py::arg("point"),
+      "The winding number of point (2,) about a list of contours (N_i, 2).");
+  module.def(
+      "contours_intersect",
+      [](const std::vector<py::object>& contours) {
+        return contours_intersect(contour_list(contours));
+      },
+      py::arg("contours"), "True if two elements of the contours touch or cross.");
+}
+
+void bind_t_snakes(py::module_& module) {
+  py::class_<TSnake>(module, "TSnake",
+                     "Topology-adaptive snakes on an Image (McInerney & Terzopoulos 2000): "
+                     "closed contours (N, 2) in pixel units that split and merge on the ACID "
+                     "grid.")
+      .def(py::init([](const Image& image, double sigma, double c, const py::kwargs& options) {
+             return TSnake(image, ImageEdgePotential(image, sigma, c),
+                           adaptive_parameters<TSnakeParameters>(options));
+           }),
+           py::arg("image"), py::arg("sigma") = 1.0, py::arg("c") = 1.0,
+           "The edge potential of `image` with sigma, c; keyword parameters cell_size, tension, "
+           "rigidity, damping, time_step, inflation, threshold, inflation_band, edge_weight, "
+           "steps_per_reparameterization (pixel units).")
+      .def(
+          "add_contour",
+          [](TSnake& self, const py::object& contour) {
+            self.add_contour(contour_argument(contour));
+          },
+          py::arg("contour"), "Adds the region a closed polygon (N, 2) winds around.")
+      .def(
+          "add_circle",
+          [](TSnake& self, const py::object& center, double radius) {
+            self.add_circle(matrix_from_array(center, "center", 1, 2, true).row(0).transpose(),
+                            radius);
+          },
+          py::arg("center"), py::arg("radius"), "Adds a circular snake (a 64-gon).")
+      .def("remove_contour", &TSnake::remove_contour, py::arg("index"),
+           "Removes contour `index` (an outer boundary with its holes, or fills a hole).")
+      .def("step", &TSnake::step,
+           "One deformation step (and reparameterization every M steps); True if the inside "
+           "region changed.")
+      .def("run", &TSnake::run, py::arg("max_steps"), py::arg("stable_steps") = 40,
+           "Steps until the region is stable for `stable_steps` steps; returns the steps taken.")
+      .def(
+          "node_forces",
+          [](const TSnake& self, const py::object& contour) {
+            return array_from_matrix(self.node_forces(contour_argument(contour)));
+          },
+          py::arg("contour"), "The force sum of the deformation step at each node, (N, 2).")
+      .def_static(
+          "outward_normals",
+          [](const py::object& contour) {
+            return array_from_matrix(TSnake::outward_normals(contour_argument(contour)));
+          },
+          py::arg("contour"), "Outward unit normals of a contour, (N, 2).")
+      .def(
+          "intensity",
+          [](const TSnake& self, const py::object& point) {
+            return self.intensity(matrix_from_array(point, "point", 1, 2, true).row(0).transpose());
+          },
+          py::arg("point"), "The image intensity at (x, y), bilinear.")
+      .def_property_readonly(
+          "contours", [](const TSnake& self) { return contour_arrays(self.contours()); },
+          "The snakes: a list of (N_i, 2) arrays (outer boundaries counter-clockwise).")
+      .def_property_readonly("steps_taken", &TSnake::steps_taken, "Steps so far.")
+      .def_property_readonly("enclosed_area", &TSnake::enclosed_area,
+                             "The area of the inside region.");
+  py::class_<TSurface>(module, "TSurface",
+                       "A topology-adaptive surface in a Volume (McInerney & Terzopoulos): the "
+                       "closed mesh of the inside region of a tetrahedral grid.")
+      .def(py::init([](const Volume& volume, double sigma, double c, const py::kwargs& options) {
+             return TSurface(volume, VolumeEdgePotential(volume, sigma, c),
+                             adaptive_parameters<TSurfaceParameters>(options));
+           }),
+           py::arg("volume"), py::arg("sigma") = 1.0, py::arg("c") = 1.0,
+           "The edge potential of `volume`; keyword parameters as TSnake (voxel units).")
+      .def(
+          "add_sphere",
+          [](TSurface& self, const py::object& center, double radius) {
+            self.add_sphere(vector3_argument(center, "center"), radius);
+          },
+          py::arg("center"), py::arg("radius"), "Adds a ball (x, y, z) in voxels.")
+      .def("step", &TSurface::step, "One deformation step; True if the inside region changed.")
+      .def("run", &TSurface::run, py::arg("max_steps"), py::arg("stable_steps") = 30,
+           "Steps until stable; returns the steps taken.")
+      .def(
+          "vertex_forces",
+          [](const TSurface& self) { return array_from_matrix(self.vertex_forces()); },
+          "The force sum of the step at every mesh vertex, (V, 3).")
+      .def(
+          "intensity",
+          [](const TSurface& self, const py::object& point) {
+            return self.intensity(vector3_argument(point, "point"));
+          },
+          py::arg("point"), "The volume intensity at (x, y, z), trilinear.")
+      .def_property_readonly("mesh", &TSurface::mesh, "The surface as a TriangleMesh.");
+}
+
+void bind_image_forces(py::module_& module) {
+  module.def(
+      "image_potential",
+      [](const py::object& pixels, double sigma, double c) {
+        const Potential potential =
+            image_potential(matrix_from_array(pixels, "pixels", -1, -1), sigma, c);
+        return py::cpp_function(
+            [potential](double x, double y) { return potential(Eigen::Vector2d(x, y)); },
+            py::arg("x"), py::arg("y"));
+      },
+      py::arg("pixels"), py::arg("sigma"), py::arg("c") = 1.0,
+      "The snake potential P(x, y) = -c |grad(G_sigma * I)| of pixels (height, width) "
+      "(Terzopoulos, below eq. 1.3), bilinear: a function of (x, y) in pixels.");
+  module.def(
+      "add_image_force",
+      [](System& system, int model, const py::object& pixels, double sigma, double c,
+         double gradient_step) {
+        return system.add_force(
+            model,
+            potential_force(image_potential(matrix_from_array(pixels, "pixels", -1, -1), sigma, c),
+                            gradient_step));
+      },
+      py::arg("system"), py::arg("model"), py::arg("pixels"), py::arg("sigma"), py::arg("c") = 1.0,
+      py::arg("gradient_step") = 1e-6,
+      "Adds the image force -grad P (eq. 1.5) at every node's (x, y) of a snake or grid "
+      "surface `model` of `system`; returns the force's index.");
+}
+
+}  // namespace
+
+void bind_vision(py::module_& module) {
+  bind_images(module);
+  bind_t_snakes(module);
+  bind_image_forces(module);
+}
+
+}  // namespace dnurbs::python

@@ -1,0 +1,58 @@
+"""Shape files from Python: NURBS curves, surfaces and triangular NURBS surfaces written and read
+back bit for bit (the JSON numbers round-trip exactly), and the library's messages for bad files
+and wrong argument types."""
+
+import numpy as np
+import pytest
+
+import dnurbs
+
+
+def same_shape(a, b):
+    assert type(a) is type(b)
+    np.testing.assert_array_equal(a.control_points, b.control_points)
+    np.testing.assert_array_equal(a.weights, b.weights)
+
+
+@pytest.mark.parametrize("shape", [dnurbs.full_circle(2.5, [1, 2, 3]), dnurbs.sphere(1.5),
+                                   dnurbs.periodic_torus(3.0, 1.0)])
+def test_nurbs_shapes_round_trip_exactly(shape, tmp_path):
+    text = dnurbs.shape_to_json(shape)
+    same_shape(dnurbs.parse_shape(text, "text"), shape)
+    path = tmp_path / "shape.json"
+    dnurbs.write_shape(path, shape)
+    back = dnurbs.read_shape(path)
+    same_shape(back, shape)
+    assert not dnurbs.is_triangular_shape_file(path)
+
+
+def test_triangular_shapes_round_trip_exactly(tmp_path):
+    basis = dnurbs.TriangularBSplineBasis(dnurbs.l_shape_triangulation(1), 2)
+    flat = dnurbs.flat_triangular_surface(basis)
+    points = np.array(flat.control_points)
+    points[:, 2] = np.sin(points[:, 0]) * np.cos(points[:, 1])
+    surface = dnurbs.TriangularNurbsSurface(basis, points, np.linspace(1, 2, basis.function_count))
+    text = dnurbs.triangular_shape_to_json(surface)
+    back = dnurbs.parse_triangular_shape(text)
+    np.testing.assert_array_equal(back.control_points, surface.control_points)
+    np.testing.assert_array_equal(back.weights, surface.weights)
+    path = tmp_path / "patch.json"
+    dnurbs.write_triangular_shape(path, surface)
+    assert dnurbs.is_triangular_shape_file(path)
+    read = dnurbs.read_triangular_shape(path)
+    u = np.array([[0.2, 0.3], [1.5, 0.4]])
+    np.testing.assert_array_equal(read(u), surface(u))
+
+
+def test_bad_shape_files_raise_the_library_message(tmp_path):
+    text = dnurbs.shape_to_json(dnurbs.full_circle(1.0))
+    with pytest.raises(ValueError, match=r"^mine: .*weight"):
+        dnurbs.parse_shape(text.replace("0.7071067811865476", "-1", 1), "mine")
+    with pytest.raises(ValueError, match="unparseable|JSON|expected"):
+        dnurbs.parse_shape("{", "broken")
+    with pytest.raises(ValueError, match="missing.json"):
+        dnurbs.read_shape(tmp_path / "missing.json")
+    with pytest.raises(TypeError, match="shape is a int, must be a NurbsCurve or a NurbsSurface"):
+        dnurbs.shape_to_json(42)
+    with pytest.raises(TypeError):
+        dnurbs.write_triangular_shape(tmp_path / "x.json", dnurbs.sphere(1.0))

@@ -1,0 +1,103 @@
+"""The rest of the System, Model, Scene and constraint bindings: offsets of stacked models,
+velocities and kinetic energy, pressure and control-point forces against exact totals, force
+bookkeeping, integrator counters, spline velocities, point-to-point constraints."""
+
+import numpy as np
+import pytest
+
+import dnurbs
+from conftest import SOURCE_DIR
+from test_system import sheet
+
+
+def test_offsets_velocities_and_kinetic_energy():
+    system = dnurbs.System()
+    system.add_model(sheet(count=4))
+    system.add_model(sheet(count=5))
+    assert system.model_count == 2
+    assert system.coordinate_offset(1) == 48 and system.velocity_offset(1) == 48
+    rng = np.random.default_rng(7)
+    velocity = rng.standard_normal(75)
+    system.set_velocities(1, velocity)
+    mass = system.matrices()["mass"]
+    stacked = system.velocities
+    np.testing.assert_array_equal(stacked[48:], velocity)
+    # (1/2) v^T M v with the same M: round-off of the sums.
+    assert system.kinetic_energy() == pytest.approx(0.5 * stacked @ (mass @ stacked), rel=1e-13)
+    system.set_time(2.5)
+    assert system.time == 2.5
+
+
+def test_pressure_and_control_point_forces_have_exact_totals():
+    system = dnurbs.System()
+    model = sheet(count=5)
+    model.fix_coordinate(4)
+    assert 4 in model.fixed_coordinates
+    system.add_model(model)
+    system.add_pressure(0, 2.0)
+    force = system.applied_forces().reshape(-1, 3)
+    # p (x_u x x_v) over the unit square, normal +z: the basis functions sum to one, so the
+    # z components add up to p times the area (Gauss quadrature, exact here).
+    np.testing.assert_allclose(force.sum(axis=0), [0.0, 0.0, 2.0], atol=1e-14)
+    system.clear_forces()
+    assert system.force_count == 0
+    system.add_control_point_force(0, [3, 7], [1.0, -2.0, 0.5])
+    force = system.applied_forces().reshape(-1, 3)
+    np.testing.assert_array_equal(force[[3, 7]], [[1.0, -2.0, 0.5]] * 2)
+    assert np.count_nonzero(force) == 6
+    spring = system.add_spring(0, [0.5, 0.5], [0, 0, 1.0], 1.0)
+    assert system.spring_model(spring) == 0
+
+
+def test_integrator_counters_and_spline_velocity():
+    system = dnurbs.System()
+    system.add_model(sheet())
+    integrator = dnurbs.Integrator("newmark")
+    integrator.step(system, 0.01, count=5)
+    # A constant model is factored once per (dt, scheme) and stepped linearly.
+    assert integrator.factorization_count == 1
+    assert integrator.last_newton_iterations == 0
+    path = dnurbs.TargetTrajectory.keyframes([0.0, 1.0, 2.0], [[0, 0, 0], [0, 0, 1], [0, 0, 2]])
+    # A natural cubic spline through collinear, evenly spaced keyframes is the line itself.
+    np.testing.assert_allclose(path.velocity(0.5), [0, 0, 1.0], atol=1e-14)
+
+
+def test_point_to_point_constraint_joins_two_sheets():
+    system = dnurbs.System()
+    system.add_model(sheet(damping=2.0))
+    shifted = sheet(damping=2.0)
+    system.add_model(shifted)
+    system.set_coordinates(1, system.model_coordinates(1) + [1.0, 0.0, 0.0] * 36)
+    system.add_gravity(1, [0, 0, -1.0])
+    # System.model gives a copy: boundary conditions set on it do not reach the system.
+    system.model(0).fix_border()
+    assert system.fixed_coordinates == []
+    solver = dnurbs.ConstraintSolver()
+    solver.add_point_to_point(system, 0, [1.0, 0.5], 1, [0.0, 0.5])
+    integrator = dnurbs.Integrator("newmark")
+    solver.step(integrator, system, 0.01, count=20)
+    assert solver.multipliers.shape == (solver.row_count,) == (3,)
+    # Baumgarte-stabilized rows started satisfied: the violation stays at round-off.
+    np.testing.assert_allclose(system.position(0, [1.0, 0.5]), system.position(1, [0.0, 0.5]),
+                               atol=1e-9)
+
+
+def test_scene_attributes_and_checkpoint():
+    scene = dnurbs.read_scene(SOURCE_DIR / "examples" / "scenes" / "curve_sculpting.json")
+    assert scene.source.endswith("curve_sculpting.json")
+    assert "D-NURBS curve" in scene.description
+    simulation = dnurbs.SceneSimulation(scene)
+    assert simulation.scene == scene
+    simulation.step(3)
+    checkpoint = simulation.checkpoint()
+    assert checkpoint["step"] == 3 and checkpoint["scene_hash"] == scene.state_hash()
+    np.testing.assert_array_equal(checkpoint["coordinates"], simulation.coordinates)
+    assert simulation.sample()["probes"].shape == (1, 3)
+
+
+def test_surface_knots_and_mesh_normals():
+    sphere = dnurbs.sphere(1.0)
+    assert sphere.knots_u.degree == 2 and sphere.knots_v.control_point_count == 9
+    mesh = dnurbs.TriangleMesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]],
+                               normals=[[0, 0, 1]] * 3)
+    np.testing.assert_array_equal(mesh.normals, [[0, 0, 1]] * 3)
