@@ -129,16 +129,20 @@ def free_weights_section(rows):
             "free_step_bench: curved clamped bicubic sheets and a curved cubic rod, newmark, "
             "dt = 0.01 (sheets) and 0.002 (rod). fixed: fixed weights; reference: free weights with "
             "IntegratorSettings::lean_step = false (separate assembly and forces, sparse sums, "
-            "SparseCholesky); lean: the lean step; +N: up to 4 Newton iterations (tolerance "
-            "1e-10). Ratios and heap allocations per step from one run.\n"]
+            "SparseCholesky); lean: the lean step (reference and lean linearly implicit); +N: up "
+            "to 4 Newton iterations (tolerance 1e-10); default: IntegratorSettings{} (the lean "
+            "step with the automatic Newton iterations of free weights). Ratios and heap "
+            "allocations per step from one run.\n"]
     text.append(table(["shape", "free coordinates", "fixed [s/step]", "reference / fixed",
-                       "lean / fixed", "lean+N / fixed", "reference / lean",
-                       "allocations reference", "allocations lean", "allocations lean+N"],
+                       "lean / fixed", "lean+N / fixed", "default / fixed", "reference / lean",
+                       "allocations reference", "allocations lean", "allocations lean+N",
+                       "allocations default"],
                       [[r["shape"], r["free_coordinates"], fmt(r["fixed_s"]),
                         fmt(r["reference_over_fixed"]), fmt(r["lean_over_fixed"]),
-                        fmt(r["lean_newton_over_fixed"]), fmt(r["reference_over_lean"]),
-                        r["allocations_reference"], r["allocations_lean"],
-                        r["allocations_lean_newton"]] for r in rows]))
+                        fmt(r["lean_newton_over_fixed"]), fmt(r["default_over_fixed"]),
+                        fmt(r["reference_over_lean"]), r["allocations_reference"],
+                        r["allocations_lean"], r["allocations_lean_newton"],
+                        r["allocations_default"]] for r in rows]))
     return "\n".join(text)
 
 

@@ -66,6 +66,9 @@ struct SceneIntegrator {
   double dt = 0.01;
   int newton_iterations = 0;
   double newton_tolerance = 1e-12;
+  /// IntegratorSettings::automatic_newton: Newton iterations for free-weight D-NURBS even with
+  /// newton_iterations = 0.
+  bool automatic_newton = true;
   double newmark_beta = 0.25;
   double newmark_gamma = 0.5;
   /// The run stops as diverged when its energy (kinetic + elastic + springs) exceeds this.

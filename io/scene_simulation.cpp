@@ -177,6 +177,7 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   settings.newmark_gamma = scene_.integrator.newmark_gamma;
   settings.newton_iterations = scene_.integrator.newton_iterations;
   settings.newton_tolerance = scene_.integrator.newton_tolerance;
+  settings.automatic_newton = scene_.integrator.automatic_newton;
   integrator_ = Integrator(settings);
   hash_ = scene_state_hash(scene_);
   budget_ = EnergyBudget({scene_.integrator.energy_growth, scene_.integrator.max_energy});

@@ -7,6 +7,7 @@
 #include <string>
 #include <variant>
 
+#include "dynamics/integrators/integrator.h"
 #include "io/scene.h"
 #include "io/scene_simulation.h"
 #include "tools/command_line.h"
@@ -124,13 +125,25 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
   }
   out << "\n";
   const SceneIntegrator& integrator = scene.integrator;
+  // IntegratorSettings::automatic_newton: free-weight models iterate Newton with 0 set
+  bool automatic = false;
+  for (int i = 0; i < simulation.system().model_count(); ++i) {
+    automatic = automatic || (integrator.newton_iterations == 0 && integrator.automatic_newton &&
+                              simulation.system().model(i).needs_newton_iterations());
+  }
+  const int iterations = automatic ? kAutomaticNewtonIterations : integrator.newton_iterations;
   out << "integrator: " << integrator.scheme << ", dt = " << integrator.dt << ", Newton iterations "
-      << integrator.newton_iterations << "\n";
+      << integrator.newton_iterations;
+  if (automatic) {
+    out << " (automatic for free weights: up to " << kAutomaticNewtonIterations << ", to "
+        << kAutomaticNewtonTolerance << " of |a|)";
+  }
+  out << "\n";
   out << "run: " << scene.step_count() << " steps (t = " << scene.step_count() * integrator.dt
       << "), " << scene.probes.size() << " probe(s)\n";
   // Each model's block is factored on its own: constant blocks once, the others every solve
-  out << "estimated cost per step: " << (all_constant ? 1 : 1 + integrator.newton_iterations)
-      << " solve(s) touching " << solve_total << " factor entries each"
+  out << "estimated cost per step: " << (all_constant ? 1 : 1 + iterations) << " solve(s) touching "
+      << solve_total << " factor entries each"
       << (all_constant ? " (after one factorization at the first step)" : "")
       << "; the naive paths would touch " << naive_solve_total << " ("
       << ratio(naive_solve_total / solve_total) << "x)";

@@ -9,7 +9,10 @@
 //              before the lean step);
 //   lean       free weights, the lean step (one pass per iterate, the factorization into a
 //              pattern analyzed once);
-//   reference_newton, lean_newton: the same with up to 4 Newton iterations (tolerance 1e-10).
+//   reference_newton, lean_newton: the same with up to 4 Newton iterations (tolerance 1e-10);
+//   default    free weights, IntegratorSettings{}: the lean step with the automatic Newton
+//              iterations of free weights (up to 10, to 1e-8 of |a|).
+// reference and lean (0 Newton iterations) switch automatic_newton off: linearly implicit.
 // Heap allocations per step (malloc, calloc and realloc, counted by the interposed functions
 // below over steady-state steps) for every setup.
 //
@@ -136,13 +139,15 @@ struct Stepper {
   Integrator integrator;
   double dt;
   double allocations_per_step = 0.0;
-  Stepper(System s, bool lean, int newton, double step)
-      : system(std::move(s)), integrator(settings(lean, newton)), dt(step) {}
+  Stepper(System s, IntegratorSettings settings, double step)
+      : system(std::move(s)), integrator(settings), dt(step) {}
+  // newton = 0: the linearly implicit step (automatic Newton off)
   static IntegratorSettings settings(bool lean, int newton) {
     IntegratorSettings s;
     s.lean_step = lean;
     s.newton_iterations = newton;
     s.newton_tolerance = 1e-10;
+    s.automatic_newton = false;
     return s;
   }
   void step() { integrator.step(system, dt); }
@@ -174,10 +179,11 @@ int run(const Options& options) {
   std::ostringstream csv;
   csv << "shape,free_coordinates,fixed_s,reference_s,lean_s,reference_newton_s,lean_newton_s,"
          "reference_over_fixed,lean_over_fixed,lean_newton_over_fixed,reference_over_lean,"
-         "allocations_fixed,allocations_reference,allocations_lean,allocations_lean_newton\n";
-  std::printf("%-12s %7s %10s %10s %10s %10s %10s %9s %9s %9s %7s %7s %7s\n", "shape", "coords",
-              "fixed ms", "ref ms", "lean ms", "ref+N ms", "lean+N ms", "ref/fix", "lean/fix",
-              "leanN/fix", "alloc_r", "alloc_l", "alloc_lN");
+         "allocations_fixed,allocations_reference,allocations_lean,allocations_lean_newton,"
+         "default_s,default_over_fixed,allocations_default\n";
+  std::printf("%-12s %7s %10s %10s %10s %10s %10s %10s %9s %9s %9s %9s %7s %7s %7s\n", "shape",
+              "coords", "fixed ms", "ref ms", "lean ms", "ref+N ms", "lean+N ms", "default ms",
+              "ref/fix", "lean/fix", "leanN/fix", "deflt/fix", "alloc_r", "alloc_l", "alloc_lN");
   // dt 0.01 for the sheets; the 50-point rod's free weights need dt 0.002 (at 0.01 its
   // linearly implicit newmark run leaves the positive definite states)
   std::vector<Shape> shapes{{"sheet 10x10", sheet, 10, 0.01},
@@ -191,28 +197,33 @@ int run(const Options& options) {
   }
   for (const Shape& shape : shapes) {
     std::vector<std::unique_ptr<Stepper>> steppers;
-    steppers.push_back(
-        std::make_unique<Stepper>(shape.make(shape.size, WeightMode::kFixed), true, 0, shape.dt));
+    steppers.push_back(std::make_unique<Stepper>(shape.make(shape.size, WeightMode::kFixed),
+                                                 IntegratorSettings{}, shape.dt));
     for (const int newton : {0, 4}) {
       for (const bool lean : {false, true}) {
         steppers.push_back(std::make_unique<Stepper>(shape.make(shape.size, WeightMode::kFree),
-                                                     lean, newton, shape.dt));
+                                                     Stepper::settings(lean, newton), shape.dt));
       }
     }
+    steppers.push_back(std::make_unique<Stepper>(shape.make(shape.size, WeightMode::kFree),
+                                                 IntegratorSettings{}, shape.dt));
     const std::vector<double> t = time_steps(steppers, options.budget);
     const int coordinates = steppers[1]->system.velocity_count() -
                             static_cast<int>(steppers[1]->system.fixed_coordinates().size());
-    // t: fixed, reference, lean, reference_newton, lean_newton
+    // t: fixed, reference, lean, reference_newton, lean_newton, default
     std::printf(
-        "%-12s %7d %10.4g %10.4g %10.4g %10.4g %10.4g %9.3g %9.3g %9.3g %7.1f %7.1f %7.1f\n",
+        "%-12s %7d %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %9.3g %9.3g %9.3g %9.3g %7.1f %7.1f "
+        "%7.1f\n",
         shape.name.c_str(), coordinates, 1e3 * t[0], 1e3 * t[1], 1e3 * t[2], 1e3 * t[3], 1e3 * t[4],
-        t[1] / t[0], t[2] / t[0], t[4] / t[0], steppers[1]->allocations_per_step,
-        steppers[2]->allocations_per_step, steppers[4]->allocations_per_step);
+        1e3 * t[5], t[1] / t[0], t[2] / t[0], t[4] / t[0], t[5] / t[0],
+        steppers[1]->allocations_per_step, steppers[2]->allocations_per_step,
+        steppers[4]->allocations_per_step);
     csv << shape.name << ',' << coordinates << ',' << t[0] << ',' << t[1] << ',' << t[2] << ','
         << t[3] << ',' << t[4] << ',' << t[1] / t[0] << ',' << t[2] / t[0] << ',' << t[4] / t[0]
         << ',' << t[1] / t[2] << ',' << steppers[0]->allocations_per_step << ','
         << steppers[1]->allocations_per_step << ',' << steppers[2]->allocations_per_step << ','
-        << steppers[4]->allocations_per_step << '\n';
+        << steppers[4]->allocations_per_step << ',' << t[5] << ',' << t[5] / t[0] << ','
+        << steppers[5]->allocations_per_step << '\n';
     std::fflush(stdout);
   }
   if (!options.out.empty()) {

@@ -122,6 +122,12 @@ class Model {
   /// True if M, D, K do not depend on q (then constant_matrices() is non-null and integrators
   /// factor once).
   virtual bool matrices_are_constant() const = 0;
+  /// True if a linearly implicit step (IntegratorSettings::newton_iterations = 0) is not to be
+  /// trusted with this model: its step matrix M + c_D D + c_K K leaves out terms of the same size
+  /// as those it keeps (free-weight D-NURBS: d(M a)/dq, dg/dq and the curvature of the energy in
+  /// the weights, which reparametrize the shape). Integrators then iterate Newton by default
+  /// (IntegratorSettings::automatic_newton). Default: false.
+  virtual bool needs_newton_iterations() const { return false; }
   /// The constant matrices, or nullptr for state-dependent ones.
   virtual const ModelMatrices* constant_matrices() const { return nullptr; }
   /// M, D, K at q (for constant models a copy of constant_matrices()). Implementations reuse

@@ -106,6 +106,8 @@ class RationalControlNetModel : public Model {
   double potential_energy(ConstVectorRef q) const final;
 
   bool matrices_are_constant() const override { return mode_ == WeightMode::kFixed; }
+  /// Free weights: true (see Model::needs_newton_iterations and the file comment).
+  bool needs_newton_iterations() const override { return mode_ == WeightMode::kFree; }
   /// Fixed weights: S (x) I_3 (built once); free weights: nullptr.
   const ModelMatrices* constant_matrices() const override;
   /// Fixed weights: a copy of constant_matrices(); free weights: the block matrices at q.

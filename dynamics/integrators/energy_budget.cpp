@@ -184,7 +184,9 @@ std::string divergence_setting(const IntegratorSettings& settings, const System&
     return text.str();
   }
   for (int i = 0; i < system.model_count(); ++i) {
-    if (!system.model(i).matrices_are_constant() && settings.newton_iterations == 0) {
+    const Model& model = system.model(i);
+    if (!model.matrices_are_constant() && settings.newton_iterations == 0 &&
+        !(settings.automatic_newton && model.needs_newton_iterations())) {
       text << "model " << i << "'s state-dependent matrices in a linearly implicit step "
            << "(integrator.newton_iterations = 0, dt = " << dt << ")";
       return text.str();

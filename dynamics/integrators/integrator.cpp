@@ -304,14 +304,20 @@ void Integrator::step(System& system, double dt) {
   }
   w.q_iter = w.q_pred;
   last_iterations_ = 0;
+  int iterations = settings_.newton_iterations;
+  double tolerance = settings_.newton_tolerance;
+  if (iterations == 0 && settings_.automatic_newton && any_state_dependent &&
+      needs_newton_iterations(system)) {
+    iterations = kAutomaticNewtonIterations;
+    tolerance = kAutomaticNewtonTolerance;
+  }
   double previous_correction = -1.0;  // the first solve factors the state-dependent blocks
-  for (int k = 0; k <= settings_.newton_iterations; ++k) {
+  for (int k = 0; k <= iterations; ++k) {
     const bool with_acceleration = k > 0 || warm_start;
     solve_iteration(system, dt, with_acceleration, previous_correction);
     last_iterations_ = k;
     previous_correction = w.delta.norm();
-    if (with_acceleration &&
-        previous_correction <= settings_.newton_tolerance * std::max(w.a.norm(), 1e-300)) {
+    if (with_acceleration && previous_correction <= tolerance * std::max(w.a.norm(), 1e-300)) {
       break;
     }
   }
@@ -333,6 +339,15 @@ void Integrator::step(System& system, double dt) {
                      "); the state is unchanged");
   }
   system.commit_step(w.q_new, w.v_new, w.a, t + dt);
+}
+
+bool Integrator::needs_newton_iterations(const System& system) {
+  for (int i = 0; i < system.model_count(); ++i) {
+    if (system.model(i).needs_newton_iterations()) {
+      return true;
+    }
+  }
+  return false;
 }
 
 bool Integrator::factor_constant_blocks(const System& system) {

@@ -64,10 +64,19 @@ struct IntegratorSettings {
   double newmark_beta = 0.25;  ///< average acceleration
   double newmark_gamma = 0.5;
   /// Newton iterations after the linearly implicit solve where matrices depend on q (or
-  /// applied forces depend on the state); 0 = linearly implicit.
+  /// applied forces depend on the state); 0 = linearly implicit (but see automatic_newton).
   int newton_iterations = 0;
   /// Iterations stop when |delta a| <= newton_tolerance * max(|a|, 1e-300).
   double newton_tolerance = 1e-12;
+  /// With newton_iterations = 0: a system with a model that needs_newton_iterations()
+  /// (free-weight D-NURBS) iterates anyway, up to kAutomaticNewtonIterations times, until
+  /// |delta a| <= kAutomaticNewtonTolerance |a| (with the lean step, modified Newton: one
+  /// residual pass and one solve per iteration while the kept factor contracts). Measured on the
+  /// curve_sculpting rod with free weights (tests/hardcase/test_free_weights.cpp): linearly
+  /// implicit, its step matrix is refused at step 16, with one iteration at step 66, with two
+  /// its force-free damped energy rises to 1.44 E_0; iterated to convergence it stays below
+  /// 1.075 E_0 and decays. false: newton_iterations = 0 is linearly implicit for every model.
+  bool automatic_newton = true;
   /// The lean step of state-dependent blocks (the default): one Model::assemble_step pass per
   /// iterate (M, D, K, f_int and g together) and, for blocks without springs, the step matrix
   /// assembled into a pattern analyzed once and factored numerically only (lean_step_matrix.h;
@@ -115,6 +124,10 @@ struct StepSystem {
 
 /// Replaces the default solve a = A^{-1} b of each (Newton) iteration.
 using SolveHook = std::function<void(const StepSystem& step, Eigen::VectorXd& a)>;
+
+/// IntegratorSettings::automatic_newton: the iteration cap and the relative tolerance on |delta a|.
+inline constexpr int kAutomaticNewtonIterations = 10;
+inline constexpr double kAutomaticNewtonTolerance = 1e-8;
 
 /// Modified Newton (IntegratorSettings::lean_step): a correction from a kept factor of A is
 /// accepted while |delta a_k| <= kNewtonStallRatio |delta a_{k-1}|.
@@ -165,6 +178,9 @@ class Integrator {
   // Factors the constant blocks whose coefficients changed; true if some block is
   // state-dependent.
   bool factor_constant_blocks(const System& system);
+  /// True if some model of `system` needs_newton_iterations() (IntegratorSettings::
+  /// automatic_newton).
+  static bool needs_newton_iterations(const System& system);
   // One solve of A delta = b at the current iterate (re-factoring state-dependent blocks), then
   // a += delta; `with_acceleration`: b subtracts M a (after the first solve or a warm start).
   // `previous_correction` < 0 (the first solve of a step): state-dependent blocks are factored

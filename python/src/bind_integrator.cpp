@@ -15,8 +15,10 @@ namespace dnurbs::python {
 namespace {
 
 Integrator make_integrator(const std::string& scheme, int newton_iterations,
-                           double newton_tolerance, double newmark_beta, double newmark_gamma) {
+                           double newton_tolerance, double newmark_beta, double newmark_gamma,
+                           bool automatic_newton) {
   IntegratorSettings settings;
+  settings.automatic_newton = automatic_newton;
   settings.scheme = parse_integrator_scheme(scheme);
   settings.newton_iterations = newton_iterations;
   settings.newton_tolerance = newton_tolerance;
@@ -47,7 +49,10 @@ void bind_integrator(py::module_& module) {
       .def(py::init(&make_integrator), py::arg("scheme") = "newmark",
            py::arg("newton_iterations") = 0, py::arg("newton_tolerance") = 1e-12,
            py::arg("newmark_beta") = 0.25, py::arg("newmark_gamma") = 0.5,
-           "scheme: 'central', 'implicit-euler' or 'newmark'.")
+           py::arg("automatic_newton") = true,
+           "scheme: 'central', 'implicit-euler' or 'newmark'. automatic_newton: with "
+           "newton_iterations = 0, free-weight D-NURBS models still iterate Newton (up to 10 "
+           "times, to 1e-8 of |a|); False makes the step linearly implicit for every model.")
       .def(
           "step",
           [](Integrator& self, System& system, double dt, int count) {

@@ -103,7 +103,8 @@ const char* const kFullScene = R"json({
      "alpha": 1, "beta": 2}
   ],
   "integrator": {"scheme": "implicit-euler", "dt": 0.005, "newton_iterations": 2,
-                 "newton_tolerance": 1e-8, "newmark_beta": 0.3, "newmark_gamma": 0.6,
+                 "newton_tolerance": 1e-8, "automatic_newton": false, "newmark_beta": 0.3,
+                 "newmark_gamma": 0.6,
                  "max_energy": 1e9},
   "run": {"steps": 7},
   "probes": [{"name": "tip", "model": "curve", "at": [0.5]},
@@ -162,6 +163,10 @@ TEST(SceneFile, ChangingAnyValueMakesScenesDifferent) {
   Scene changed = scene;
   changed.integrator.newmark_gamma = 0.61;
   EXPECT_FALSE(changed == scene);
+  changed = scene;
+  changed.integrator.automatic_newton = !scene.integrator.automatic_newton;
+  EXPECT_FALSE(changed == scene);
+  EXPECT_NE(scene_state_hash(changed), scene_state_hash(scene));
   changed = scene;
   as<SceneDNurbsSurface>(changed.models[1].spec).material.b11 = 0.21;
   EXPECT_FALSE(changed == scene);

@@ -101,3 +101,37 @@ def test_surface_knots_and_mesh_normals():
     mesh = dnurbs.TriangleMesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]],
                                normals=[[0, 0, 1]] * 3)
     np.testing.assert_array_equal(mesh.normals, [[0, 0, 1]] * 3)
+
+
+def free_weight_rod():
+    """The curve_sculpting rod with free weights, ends fixed, from rest (far from equilibrium)."""
+    points = np.zeros((8, 3))
+    points[:, 0] = np.arange(8)
+    curve = dnurbs.NurbsCurve(dnurbs.KnotVector.clamped_uniform(3, 8), points)
+    rod = dnurbs.DNurbsCurve(curve, damping_density=2.0, tension=5.0, rigidity=0.5,
+                             free_weights=True)
+    rod.fix_point(0)
+    rod.fix_point(7)
+    system = dnurbs.System()
+    system.add_model(rod)
+    return system
+
+
+def test_free_weights_iterate_newton_unless_told_not_to():
+    # Default: Newton iterations for free weights (IntegratorSettings::automatic_newton); the
+    # damped, force-free rod loses energy over 1 s.
+    system = free_weight_rod()
+    start = system.kinetic_energy() + system.potential_energy()
+    integrator = dnurbs.Integrator()
+    integrator.step(system, 0.01)
+    assert integrator.last_newton_iterations > 0
+    integrator.step(system, 0.01, count=99)
+    assert system.kinetic_energy() + system.potential_energy() < start
+    # automatic_newton=False: the linearly implicit step, which this start drives out of the
+    # positive definite states (refused at step 16, state untouched: dnurbs.Error)
+    system = free_weight_rod()
+    linear = dnurbs.Integrator(automatic_newton=False)
+    linear.step(system, 0.01)
+    assert linear.last_newton_iterations == 0
+    with pytest.raises(dnurbs.Error, match="not positive definite"):
+        linear.step(system, 0.01, count=99)

@@ -188,6 +188,7 @@ Trajectory run(System system, IntegratorScheme scheme, bool lean, int newton, in
   settings.scheme = scheme;
   settings.lean_step = lean;
   settings.newton_iterations = newton;
+  settings.automatic_newton = false;  // newton = 0: the linearly implicit step of both paths
   settings.newton_tolerance = 1e-12;
   Integrator integrator(settings);
   for (int k = 0; k < steps; ++k) {
