@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -29,6 +30,27 @@ double Model::potential_energy(ConstVectorRef q) const {
     used = &matrices;
   }
   return 0.5 * q.dot(used->stiffness * q);
+}
+
+double Model::kinetic_energy(ConstVectorRef q, ConstVectorRef qd) const {
+  if (q.size() != coordinate_count() || qd.size() != velocity_count()) {
+    throw make_error("kinetic energy: q has ", q.size(), " entries and qd ", qd.size(),
+                     ", the model has ", coordinate_count(), " coordinates and ", velocity_count(),
+                     " velocities");
+  }
+  const ModelMatrices* scalar = scalar_matrices();
+  const int block = kronecker_block_size();
+  if (scalar != nullptr && matrices_are_constant() && block > 0 &&
+      qd.size() == scalar->mass.rows() * block) {
+    // M = S_M (x) I_b: one pass over the scalar matrix (core/kronecker.h)
+    return 0.5 * kronecker_quadratic_form(scalar->mass, qd, block);
+  }
+  if (const ModelMatrices* constant = constant_matrices()) {
+    return 0.5 * qd.dot(constant->mass * qd);
+  }
+  ModelMatrices matrices;
+  assemble_matrices(q, matrices);
+  return 0.5 * qd.dot(matrices.mass * qd);
 }
 
 void Model::add_inertial_force(ConstVectorRef /*q*/, ConstVectorRef /*qd*/,

@@ -145,6 +145,10 @@ class Model {
   virtual void add_internal_force(ConstVectorRef q, VectorRef force) const;
   /// Elastic potential energy E(q) with f_int = -dE/dq. Default (1/2) q^T K(q) q.
   virtual double potential_energy(ConstVectorRef q) const;
+  /// Kinetic energy T(q, qd) = (1/2) qd^T M(q) qd (q of coordinate_count(), qd of
+  /// velocity_count()). Default: one pass over the scalar mass matrix when M = S_M (x) I_b is
+  /// constant, the constant M otherwise, else M assembled at q.
+  virtual double kinetic_energy(ConstVectorRef q, ConstVectorRef qd) const;
   /// Adds the generalized inertial force g(q, qd) = -integral mu L^T Ldot qd (zero where M does
   /// not depend on q: the default adds nothing).
   virtual void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const;

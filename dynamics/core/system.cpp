@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "core/error.h"
-#include "core/kronecker.h"
 
 namespace dnurbs {
 
@@ -438,25 +437,10 @@ void System::project_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::Vect
 
 double System::kinetic_energy() const {
   double energy = 0.0;
-  ModelMatrices matrices;
   for (size_t i = 0; i < models_.size(); ++i) {
     const Model& m = *models_[i];
-    const auto q = coordinates_.segment(coordinate_offsets_[i], m.coordinate_count());
-    const auto qd = velocities_.segment(velocity_offsets_[i], m.velocity_count());
-    const ModelMatrices* scalar = m.scalar_matrices();
-    const int block = m.kronecker_block_size();
-    if (scalar != nullptr && m.matrices_are_constant() && block > 0 &&
-        qd.size() == scalar->mass.rows() * block) {
-      // M = S_M (x) I_b: one pass over the scalar matrix (core/kronecker.h)
-      energy += 0.5 * kronecker_quadratic_form(scalar->mass, qd, block);
-      continue;
-    }
-    const ModelMatrices* used = m.constant_matrices();
-    if (used == nullptr) {
-      m.assemble_matrices(q, matrices);
-      used = &matrices;
-    }
-    energy += 0.5 * qd.dot(used->mass * qd);
+    energy += m.kinetic_energy(coordinates_.segment(coordinate_offsets_[i], m.coordinate_count()),
+                               velocities_.segment(velocity_offsets_[i], m.velocity_count()));
   }
   return energy;
 }

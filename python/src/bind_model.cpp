@@ -126,6 +126,13 @@ void bind_model_contract(py::class_<Model>& model) {
           },
           py::arg("q") = py::none(), "The elastic energy E(q).")
       .def(
+          "kinetic_energy",
+          [](const Model& self, const py::object& q, const py::object& qd) {
+            return self.kinetic_energy(model_state(self, q), model_velocity(self, qd));
+          },
+          py::arg("q") = py::none(), py::arg("qd") = py::none(),
+          "The kinetic energy (1/2) qd^T M(q) qd.")
+      .def(
           "internal_force",
           [](const Model& self, const py::object& q) {
             Eigen::VectorXd force = Eigen::VectorXd::Zero(self.velocity_count());

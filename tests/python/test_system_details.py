@@ -24,6 +24,11 @@ def test_offsets_velocities_and_kinetic_energy():
     np.testing.assert_array_equal(stacked[48:], velocity)
     # (1/2) v^T M v with the same M: round-off of the sums.
     assert system.kinetic_energy() == pytest.approx(0.5 * stacked @ (mass @ stacked), rel=1e-13)
+    # The model's own kinetic energy (the Model contract): the system's is their sum, exactly
+    # (model 0 is at rest)
+    model = system.model(1)
+    assert model.kinetic_energy(qd=velocity) == system.kinetic_energy()
+    assert model.kinetic_energy() == 0.0
     system.set_time(2.5)
     assert system.time == 2.5
 

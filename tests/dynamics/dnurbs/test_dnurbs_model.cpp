@@ -158,6 +158,33 @@ TEST(FreeWeightMatrices, MassMatchesIndependentQuadratureOfJacobians) {
   EXPECT_LT((M - M.transpose()).norm(), 1e-15);               // symmetric by construction
 }
 
+TEST(FreeWeightKineticEnergy, IsHalfTheMassQuadraticFormAtTheState) {
+  // Model::kinetic_energy of a state-dependent model: (1/2) qd^T M(q) qd with M assembled at q,
+  // not at the initial state (the moved weights change M); fixed weights: the scalar pass.
+  const DNurbsSurface model(rational_surface(), DNurbsSurfaceMaterial{}, free_weights());
+  Eigen::VectorXd q = model.initial_coordinates();
+  for (int i = 0; i < model.control_point_count(); ++i) {
+    q[4 * i + 3] *= 1.0 + 0.3 * std::sin(static_cast<double>(i));
+  }
+  const Eigen::VectorXd qd = random_velocity(model.velocity_count(), 11);
+  ModelMatrices moved;
+  model.assemble_matrices(q, moved);
+  ModelMatrices initial;
+  model.assemble_matrices(model.initial_coordinates(), initial);
+  const double expected = 0.5 * qd.dot(moved.mass * qd);
+  EXPECT_NEAR(model.kinetic_energy(q, qd), expected, 1e-14 * expected);
+  EXPECT_GT(std::abs(0.5 * qd.dot(initial.mass * qd) - expected), 1e-6 * expected);
+  const DNurbsSurface fixed(rational_surface(), DNurbsSurfaceMaterial{}, DNurbsSettings{});
+  const Eigen::VectorXd fixed_qd = random_velocity(fixed.velocity_count(), 12);
+  ModelMatrices constant;
+  fixed.assemble_matrices(fixed.initial_coordinates(), constant);
+  const double fixed_expected = 0.5 * fixed_qd.dot(constant.mass * fixed_qd);
+  EXPECT_NEAR(fixed.kinetic_energy(fixed.initial_coordinates(), fixed_qd), fixed_expected,
+              1e-14 * fixed_expected);
+  // Sizes are checked
+  EXPECT_THROW(static_cast<void>(model.kinetic_energy(q, qd.head(3))), Error);
+}
+
 TEST(FreeWeightStiffness, InternalForceIsMinusGradientOfEnergyAndEqualsMinusKq) {
   DNurbsSurfaceMaterial material;
   material.a10 = 1.0;
