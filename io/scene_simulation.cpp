@@ -213,8 +213,9 @@ void SceneSimulation::add_forces() {
     const SceneForce& force = scene_.forces[i];
     try {
       force.spec->apply(system_, force.start, force.end);
-      force_sources_.resize(static_cast<size_t>(system_.force_count()), static_cast<int>(i));
-      spring_sources_.resize(static_cast<size_t>(system_.spring_id_count()), static_cast<int>(i));
+      const std::string label = indexed("forces", i) + " (" + force.spec->type() + ")";
+      force_labels_.resize(static_cast<size_t>(system_.force_count()), label);
+      spring_labels_.resize(static_cast<size_t>(system_.spring_id_count()), label);
     } catch (const SceneKeyError& error) {
       fail(scene_, indexed("forces", i) + error.key(), error.what());
     } catch (const Error& error) {
@@ -287,17 +288,16 @@ void SceneSimulation::step() {
 
 std::string SceneSimulation::energy_driver(const EnergyCheck& check) const {
   std::ostringstream text;
-  const auto scene_force = [&](int k) {
-    text << indexed("forces", static_cast<size_t>(k)) << " ("
-         << scene_.forces[static_cast<size_t>(k)].spec->type() << ", work " << check.driver_work
-         << " in the step of growth " << check.growth << ")";
+  const auto named = [&](const std::string& label) {
+    text << label << " (work " << check.driver_work << " in the step of growth " << check.growth
+         << ")";
   };
   switch (check.driver) {
     case EnergyDriver::kForce:
-      scene_force(force_sources_.at(static_cast<size_t>(check.index)));
+      named(force_labels_.at(static_cast<size_t>(check.index)));
       break;
     case EnergyDriver::kSpring:
-      scene_force(spring_sources_.at(static_cast<size_t>(check.index)));
+      named(spring_labels_.at(static_cast<size_t>(check.index)));
       break;
     case EnergyDriver::kExtra:
       text << "the constraint forces (work " << check.driver_work << " in the step of growth "
@@ -353,29 +353,78 @@ std::vector<double> SceneSimulation::log_row(const SceneSample& s) const {
 std::vector<TriangleMesh> SceneSimulation::meshes(int resolution) const {
   std::vector<TriangleMesh> result;
   for (int i = 0; i < system_.model_count(); ++i) {
-    const SceneModel& spec = scene_.models[static_cast<size_t>(i)];
-    const Model& model = system_.model(i);
-    const Eigen::VectorXd q = system_.coordinates(i);
-    const Eigen::Vector2d& scale = spec.resolution_scale;
-    ModelTessellationSettings settings;
-    if (model.parametric_dimension() == 1) {
-      // Curves: four times the surface resolution along the curve, a tube of 12 sides
-      settings.segments_u = segments(4 * resolution, scale.x(), 3);
-      settings.tube_radius = tube_radii_[static_cast<size_t>(i)];
-      settings.tube_sides = 12;
-    } else {
-      const ParameterDomain domain = model.parameter_domain(q);
-      settings.segments_u = segments(resolution, scale.x(), minimum_segments(domain, false));
-      settings.segments_v = segments(resolution, scale.y(), minimum_segments(domain, true));
-    }
-    result.push_back(tessellate_model(model, q, settings, spec.name));
+    result.push_back(mesh(i, resolution));
   }
   return result;
 }
 
+TriangleMesh SceneSimulation::mesh(int i, int resolution) const {
+  const SceneModel& spec = scene_.models.at(static_cast<size_t>(i));
+  const Model& model = system_.model(i);
+  const Eigen::VectorXd q = system_.coordinates(i);
+  const Eigen::Vector2d& scale = spec.resolution_scale;
+  ModelTessellationSettings settings;
+  if (model.parametric_dimension() == 1) {
+    // Curves: four times the surface resolution along the curve, a tube of 12 sides
+    settings.segments_u = segments(4 * resolution, scale.x(), 3);
+    settings.tube_radius = tube_radii_[static_cast<size_t>(i)];
+    settings.tube_sides = 12;
+  } else {
+    const ParameterDomain domain = model.parameter_domain(q);
+    settings.segments_u = segments(resolution, scale.x(), minimum_segments(domain, false));
+    settings.segments_v = segments(resolution, scale.y(), minimum_segments(domain, true));
+  }
+  return tessellate_model(model, q, settings, spec.name);
+}
+
 void SceneSimulation::set_coordinates(const Eigen::VectorXd& q) {
-  system_.set_state(q, Eigen::VectorXd::Zero(system_.velocity_count()), system_.time());
+  set_state(q, Eigen::VectorXd::Zero(system_.velocity_count()));
+}
+
+void SceneSimulation::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  system_.set_state(q, qd, system_.time());
   budget_.start(system_);
+}
+
+void SceneSimulation::continue_from(const SceneSimulation& previous) {
+  const System& old = previous.system();
+  if (old.coordinate_count() != system_.coordinate_count() ||
+      old.velocity_count() != system_.velocity_count()) {
+    throw make_error(scene_.source, ": cannot continue from a simulation of ",
+                     old.coordinate_count(), " coordinates and ", old.velocity_count(),
+                     " velocities; this one has ", system_.coordinate_count(), " and ",
+                     system_.velocity_count());
+  }
+  system_.set_state(old.coordinates(), old.velocities(), old.time());
+  if (old.accelerations_valid()) {
+    // Newmark continues from the last step's acceleration (with the constraint forces in it);
+    // recomputing it here would leave the constraints out
+    system_.set_accelerations(old.accelerations());
+  }
+  steps_ = previous.steps_done();
+  budget_.start(system_);
+}
+
+int SceneSimulation::add_interactive_spring(int model, Spring spring, std::string label) {
+  const int id = system_.add_spring(model, std::move(spring));
+  spring_labels_.resize(static_cast<size_t>(system_.spring_id_count()));
+  spring_labels_[static_cast<size_t>(id)] = std::move(label);
+  return id;
+}
+
+void SceneSimulation::set_interactive_spring(int id, Spring spring) {
+  system_.set_spring(id, std::move(spring));
+}
+
+void SceneSimulation::remove_interactive_spring(int id) {
+  system_.remove_spring(id);
+}
+
+int SceneSimulation::add_interactive_force(int model, Force force, std::string label) {
+  const int index = system_.add_force(model, std::move(force));
+  force_labels_.resize(static_cast<size_t>(system_.force_count()));
+  force_labels_[static_cast<size_t>(index)] = std::move(label);
+  return index;
 }
 
 std::optional<Shape> SceneSimulation::shape(int i) const {

@@ -96,12 +96,32 @@ class SceneSimulation {
   /// One mesh per model at the current state, named after the model; `resolution` segments per
   /// direction times the model's resolution_scale.
   std::vector<TriangleMesh> meshes(int resolution) const;
+  /// The mesh of model i alone (as meshes()[i]); throws for an index out of range.
+  TriangleMesh mesh(int i, int resolution) const;
 
   /// Sets the stacked coordinates (System order, e.g. a DesignResult's) with zero velocities at
   /// the current time; throws Error if the size is wrong or a value is not finite.
   void set_coordinates(const Eigen::VectorXd& q);
+  /// Sets the stacked coordinates and velocities at the current time (System::set_state checks
+  /// them); the energy budget starts again there.
+  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  /// Continues from `previous`, a simulation of the same models with other settings (a changed
+  /// material, time step or constraint): its coordinates, velocities, last acceleration, time and
+  /// step count. The energy budget starts again there. Throws Error if the sizes differ.
+  void continue_from(const SceneSimulation& previous);
   /// Model i's current exact shape (Model::exact_shape: D-NURBS curves and surfaces).
   std::optional<Shape> shape(int i) const;
+
+  // Interactive sculpting (sculpt/): springs and forces added while the scene runs. `label`
+  // names each in the divergence report ("the drag of client 2 on hat").
+  /// Attaches an implicit spring to model i (System::add_spring); returns its id.
+  int add_interactive_spring(int model, Spring spring, std::string label);
+  /// Replaces spring `id`'s function (a moved target or material point).
+  void set_interactive_spring(int id, Spring spring);
+  /// Detaches spring `id` (System::remove_spring).
+  void remove_interactive_spring(int id);
+  /// Adds an applied force on model i (System::add_force); returns its index.
+  int add_interactive_force(int model, Force force, std::string label);
 
   Checkpoint checkpoint() const;
   /// Continues from a checkpoint; throws Error naming `source` if its scene hash or sizes do not
@@ -126,8 +146,8 @@ class SceneSimulation {
   int steps_ = 0;
   std::vector<double> tube_radii_;  ///< curves and snakes: tube radius of their meshes
   EnergyBudget budget_;
-  std::vector<int> force_sources_;   ///< scene force of each System force
-  std::vector<int> spring_sources_;  ///< scene force of each System spring id
+  std::vector<std::string> force_labels_;   ///< what each System force is, for reports
+  std::vector<std::string> spring_labels_;  ///< what each System spring id is
 };
 
 }  // namespace dnurbs

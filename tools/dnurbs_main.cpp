@@ -13,6 +13,7 @@
 #include "tools/info_command.h"
 #include "tools/mesh_commands.h"
 #include "tools/run_command.h"
+#include "tools/serve_command.h"
 
 namespace {
 
@@ -27,6 +28,7 @@ commands:
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
   fit superquadric|surface POINTS  fit a superquadric or a D-NURBS surface to points, as JSON
   design SCENE.json [--out DIR]    energy-minimizing static shape under forces and constraints
+  serve [SCENE.json] [--port N]    sculpt a scene in the browser (http://127.0.0.1:N/)
 
 Run `dnurbs COMMAND --help` for a command's options.
 exit codes: 0 ok, 1 bad input or failed processing, 2 bad command line
@@ -66,6 +68,9 @@ int main(int argc, char** argv) {
     }
     if (command == "design") {
       return design_command(rest, std::cout);
+    }
+    if (command == "serve") {
+      return serve_command(rest, std::cout);
     }
     if (command == "preview") {
       return preview_command(rest, program, std::cout);

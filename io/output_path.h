@@ -1,0 +1,20 @@
+#pragma once
+// Files written into an output folder under names that come from a scene or a client (model
+// names): such a name must never reach outside the folder.
+
+#include <filesystem>
+#include <string>
+
+namespace dnurbs {
+
+/// `name` if it is a plain file-name stem (1 to 100 characters from A-Z a-z 0-9 . _ -, not
+/// starting with '.'), otherwise `fallback`.
+std::string output_file_stem(const std::string& name, const std::string& fallback);
+
+/// directory / file_name, creating the directory if it is missing. Throws Error naming the
+/// name if `file_name` is not a plain file name (a separator, "." or "..", empty) and naming
+/// the directory if it cannot be created.
+std::filesystem::path output_file_path(const std::filesystem::path& directory,
+                                       const std::string& file_name);
+
+}  // namespace dnurbs
