@@ -21,7 +21,15 @@ packages=(
   # The Python module (python/, docs/python.md): pybind11 bindings built against the
   # interpreter's headers; SciPy for sparse matrices out of it, pytest for its tests
   python3-dev pybind11-dev python3-scipy python3-pytest
+  # `dnurbs serve` (sculpt/, docs/serve.md): Boost.Beast for HTTP and WebSocket (header-only),
+  # three.js r111 for the page (served from /usr/share/javascript/three, never fetched), and
+  # Chromium for the browser tests (tests/web)
+  libboost-dev libjs-three chromium
 )
+# Node.js runs the browser tests; a machine may already have it from elsewhere (NodeSource)
+if ! command -v node >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for package in "${packages[@]}"; do
@@ -30,15 +38,22 @@ for package in "${packages[@]}"; do
   fi
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "dnurbs: installing ${missing[*]}"
+  sudo_prefix=""
+  if [ "$(id -u)" -ne 0 ]; then
+    sudo_prefix="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo_prefix apt-get update -qq
+  $sudo_prefix apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "dnurbs: installing ${missing[*]}"
-sudo_prefix=""
-if [ "$(id -u)" -ne 0 ]; then
-  sudo_prefix="sudo"
+# The browser tests' npm packages (playwright-core, ws, pngjs), pinned by package-lock.json
+web_tests="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/web"
+if [ -f "$web_tests/package-lock.json" ] &&
+   { [ ! -d "$web_tests/node_modules" ] ||
+     [ "$web_tests/package-lock.json" -nt "$web_tests/node_modules" ]; }; then
+  echo "dnurbs: installing the npm packages of tests/web"
+  (cd "$web_tests" && npm ci --no-audit --no-fund --loglevel=error && touch node_modules)
 fi
-export DEBIAN_FRONTEND=noninteractive
-$sudo_prefix apt-get update -qq
-$sudo_prefix apt-get install -y -qq --no-install-recommends "${missing[@]}"

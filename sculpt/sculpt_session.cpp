@@ -256,7 +256,7 @@ void SculptSession::apply(int client, const SculptRequest& request, SculptReply&
       return;
     }
     case SculptRequestType::kUndo:
-      undo();
+      undo(client);
       result.status_changed = true;
       return;
     case SculptRequestType::kSave: {
@@ -309,7 +309,7 @@ int SculptSession::begin_drag(int client, const SculptRequest& request) {
   }
   ++next_drag_;
   const System& system = simulation_->system();
-  undo_.push_back({id, system.coordinates(), system.velocities()});
+  undo_.push_back({client, id, system.coordinates(), system.velocities()});
   if (undo_.size() > kUndoDepth) {
     undo_.erase(undo_.begin());
   }
@@ -372,16 +372,18 @@ void SculptSession::change_setting(SculptSetting setting, double value) {
   settings_[k] = value;
 }
 
-void SculptSession::undo() {
-  if (undo_.empty()) {
-    throw make_error("undo: no drag to undo");
+void SculptSession::undo(int client) {
+  const auto last = std::find_if(undo_.rbegin(), undo_.rend(),
+                                 [client](const Snapshot& s) { return s.client == client; });
+  if (last == undo_.rend()) {
+    throw make_error("undo: no drag of this client to undo");
   }
-  const Snapshot snapshot = undo_.back();
+  const Snapshot snapshot = *last;
   simulation_->set_state(snapshot.q, snapshot.qd);
   if (drags_.contains(snapshot.drag)) {
     end_drag(snapshot.drag);
   }
-  undo_.pop_back();
+  undo_.erase(std::next(last).base());
   diverged_.clear();
 }
 

@@ -102,6 +102,7 @@ class SculptSession {
     int spring = -1;                                   ///< the simulation's spring id
   };
   struct Snapshot {
+    int client = 0;
     int drag = -1;  ///< the drag that began after it
     Eigen::VectorXd q;
     Eigen::VectorXd qd;
@@ -117,7 +118,8 @@ class SculptSession {
   void move_drag(int client, const SculptRequest& request);
   void end_drag(int id);
   void change_setting(SculptSetting setting, double value);
-  void undo();
+  // Back to the state before the client's last drag began (that drag ended).
+  void undo(int client);
   std::vector<std::string> save() const;
   // A simulation of the scene with these overrides and pins (sculpt/sculpt_scene.h), the pushes
   // and active drags attached (their spring ids set in drags_ only when `commit`); with
