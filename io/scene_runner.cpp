@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/csv_log.h"
 #include "io/mesh_export.h"
+#include "io/output_path.h"
 #include "io/shape_file.h"
 
 namespace dnurbs {
@@ -79,7 +80,10 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
     if (output.shape_files) {
       for (int i = 0; i < simulation.system().model_count(); ++i) {
         if (std::optional<Shape> shape = simulation.shape(i)) {
-          const auto path = directory / (scene.models[static_cast<size_t>(i)].name + ".json");
+          // A model name is any string: one that is not a plain file name becomes model<i>
+          const auto path = directory / (output_file_stem(scene.models[static_cast<size_t>(i)].name,
+                                                          "model" + std::to_string(i)) +
+                                         ".json");
           write_shape_file(path, *shape);
           result.shape_files.push_back(path);
         }
