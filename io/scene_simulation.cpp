@@ -352,6 +352,7 @@ std::vector<double> SceneSimulation::log_row(const SceneSample& s) const {
 
 std::vector<TriangleMesh> SceneSimulation::meshes(int resolution) const {
   std::vector<TriangleMesh> result;
+  result.reserve(static_cast<size_t>(system_.model_count()));
   for (int i = 0; i < system_.model_count(); ++i) {
     result.push_back(mesh(i, resolution));
   }

@@ -15,7 +15,7 @@ if [ ! -f "$build/compile_commands.json" ]; then
        "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON, as scripts/build.sh does)" >&2
   exit 1
 fi
-folders=(core nurbs surface vision dynamics constraints design io tools python)
+folders=(core nurbs surface vision dynamics constraints design io sculpt tools python)
 existing=()
 for folder in "${folders[@]}"; do
   # python/ only when the build compiled the Python module (DNURBS_BUILD_PYTHON)

@@ -29,22 +29,25 @@ struct TypeKeys {
   std::initializer_list<const char*> keys;  // besides "type" and "id"
 };
 
-const std::array<TypeKeys, 14> kTypes = {{
-    {"grab", SculptRequestType::kGrab, {"model", "at", "target"}},
-    {"push", SculptRequestType::kPush, {"model", "at", "force"}},
-    {"move", SculptRequestType::kMove, {"drag", "target", "force", "at"}},
-    {"release", SculptRequestType::kRelease, {"drag"}},
-    {"pin", SculptRequestType::kPin, {"model", "at"}},
-    {"set", SculptRequestType::kSet, {"key", "value"}},
-    {"play", SculptRequestType::kPlay, {}},
-    {"pause", SculptRequestType::kPause, {}},
-    {"step", SculptRequestType::kStep, {}},
-    {"reset", SculptRequestType::kReset, {}},
-    {"undo", SculptRequestType::kUndo, {}},
-    {"save", SculptRequestType::kSave, {}},
-    {"query", SculptRequestType::kQuery, {"model", "at"}},
-    {"shape", SculptRequestType::kShape, {"model"}},
-}};
+const std::array<TypeKeys, 14>& request_types() {
+  static const std::array<TypeKeys, 14> types = {{
+      {"grab", SculptRequestType::kGrab, {"model", "at", "target"}},
+      {"push", SculptRequestType::kPush, {"model", "at", "force"}},
+      {"move", SculptRequestType::kMove, {"drag", "target", "force", "at"}},
+      {"release", SculptRequestType::kRelease, {"drag"}},
+      {"pin", SculptRequestType::kPin, {"model", "at"}},
+      {"set", SculptRequestType::kSet, {"key", "value"}},
+      {"play", SculptRequestType::kPlay, {}},
+      {"pause", SculptRequestType::kPause, {}},
+      {"step", SculptRequestType::kStep, {}},
+      {"reset", SculptRequestType::kReset, {}},
+      {"undo", SculptRequestType::kUndo, {}},
+      {"save", SculptRequestType::kSave, {}},
+      {"query", SculptRequestType::kQuery, {"model", "at"}},
+      {"shape", SculptRequestType::kShape, {"model"}},
+  }};
+  return types;
+}
 
 // Reads the keys of one message, failing with the message's type and id in the error.
 class RequestReader {
@@ -208,7 +211,7 @@ SculptRequest parse_sculpt_request(std::string_view text, const SculptRequestLim
   }
   const Json& type = reader.require("type");
   const TypeKeys* keys = nullptr;
-  for (const TypeKeys& candidate : kTypes) {
+  for (const TypeKeys& candidate : request_types()) {
     if (type.is_string() && type.get<std::string>() == candidate.name) {
       keys = &candidate;
     }

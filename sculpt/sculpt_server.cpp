@@ -131,7 +131,7 @@ class WebSocketConnection : public std::enable_shared_from_this<WebSocketConnect
   WebSocketConnection(tcp::socket socket, SculptServer::State& state)
       : stream_(std::move(socket)), state_(state) {}
 
-  void start(http::request<http::string_body> request) {
+  void start(const http::request<http::string_body>& request) {
     stream_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     stream_.read_message_max(state_.options.max_message_bytes);
     stream_.async_accept(request, [self = shared_from_this()](beast::error_code error) {
@@ -243,12 +243,13 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
   }
 
  private:
-  void dispatch(http::request<http::string_body> request) {
+  // The handshake's response is built from the request when the accept starts (Beast's
+  // accept_op), so the request need not outlive this call.
+  void dispatch(const http::request<http::string_body>& request) {
     if (websocket::is_upgrade(request) && request.target() == "/ws" &&
         state_.origin_allowed(request)) {
       stream_.expires_never();
-      std::make_shared<WebSocketConnection>(stream_.release_socket(), state_)
-          ->start(std::move(request));
+      std::make_shared<WebSocketConnection>(stream_.release_socket(), state_)->start(request);
       return;
     }
     if (websocket::is_upgrade(request)) {

@@ -288,8 +288,8 @@ void SculptSession::apply(int client, const SculptRequest& request, SculptReply&
 }
 
 Spring SculptSession::drag_spring(const Drag& drag) const {
-  const SpringState state{drag.at, drag.vector,
-                          settings_[static_cast<std::size_t>(SculptSetting::kStiffness)]};
+  SpringState state{drag.at, drag.vector,
+                    settings_[static_cast<std::size_t>(SculptSetting::kStiffness)]};
   return [state](double) { return state; };
 }
 

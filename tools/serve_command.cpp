@@ -51,8 +51,8 @@ Scene sculpting_demo_scene() {
 }
 
 std::filesystem::path default_web_root() {
-  for (const std::filesystem::path directory : {DNURBS_SOURCE_WEB_DIR, DNURBS_INSTALLED_WEB_DIR}) {
-    if (std::filesystem::is_regular_file(directory / "index.html")) {
+  for (const char* directory : {DNURBS_SOURCE_WEB_DIR, DNURBS_INSTALLED_WEB_DIR}) {
+    if (std::filesystem::is_regular_file(std::filesystem::path(directory) / "index.html")) {
       return directory;
     }
   }
