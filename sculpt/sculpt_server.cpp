@@ -102,7 +102,10 @@ struct SculptServer::State {
 
   // Simulation thread ---------------------------------------------------------------------------
   void simulate();
+  // One tick: the clients' messages, a step, the frame, the status when due
+  void tick(double now, Clock::time_point& next_status, Clock::duration status_period);
   void handle_events(double now);
+  std::string failure;  // written by the simulation thread before it stops, read after join
 
   SculptSession& session;
   SculptServerOptions options;
@@ -438,25 +441,38 @@ void SculptServer::State::simulate() {
   auto next_status = next;
   while (running.load()) {
     const double now = std::chrono::duration<double>(Clock::now() - start).count();
-    handle_events(now);
-    session.tick(now);
-    if (std::string frame = session.next_frame(now); !frame.empty()) {
-      broadcast({shared(std::move(frame)), true});
-    }
-    for (const auto& [connection, id] : clients) {
-      if (connection->needs_full_frame.exchange(false)) {
-        post_to(connection, {shared(session.full_frame()), true});
-      }
-    }
-    if (Clock::now() >= next_status) {
-      broadcast({shared(session.status_message(now)), false});
-      next_status += status_period;
-      next_status = std::max(next_status, Clock::now());
+    try {
+      tick(now, next_status, status_period);
+    } catch (const std::exception& error) {
+      // Nothing a client sends gets here (the session answers it); this is a fault of the
+      // server itself: stop, and let run() report it
+      failure = error.what();
+      asio::post(context, [this] { shutdown(); });
+      return;
     }
     next += period;
     // Behind by more than a tick (a slow step): do not try to catch up with a burst
     next = std::max(next, Clock::now() - period);
     std::this_thread::sleep_until(next);
+  }
+}
+
+void SculptServer::State::tick(double now, Clock::time_point& next_status,
+                               Clock::duration status_period) {
+  handle_events(now);
+  session.tick(now);
+  if (std::string frame = session.next_frame(now); !frame.empty()) {
+    broadcast({shared(std::move(frame)), true});
+  }
+  for (const auto& [connection, id] : clients) {
+    if (connection->needs_full_frame.exchange(false)) {
+      post_to(connection, {shared(session.full_frame()), true});
+    }
+  }
+  if (Clock::now() >= next_status) {
+    broadcast({shared(session.status_message(now)), false});
+    next_status += status_period;
+    next_status = std::max(next_status, Clock::now());
   }
 }
 
@@ -529,6 +545,9 @@ void SculptServer::run() {
   state.context.run();
   state.running.store(false);
   state.simulation.join();
+  if (!state.failure.empty()) {
+    throw make_error("the simulation thread stopped: ", state.failure);
+  }
 }
 
 void SculptServer::stop() {

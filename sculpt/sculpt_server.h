@@ -46,7 +46,8 @@ class SculptServer {
   /// The bound port (the chosen one when options.port was 0).
   unsigned short port() const;
   /// Serves until SIGINT or SIGTERM (or stop()): then closes every connection, stops the
-  /// simulation thread and returns.
+  /// simulation thread and returns. Throws Error if the simulation thread failed (it stops the
+  /// server first).
   void run();
   /// Asks run() to return (thread-safe).
   void stop();
