@@ -289,8 +289,8 @@ void SceneSimulation::step() {
 std::string SceneSimulation::energy_driver(const EnergyCheck& check) const {
   std::ostringstream text;
   const auto named = [&](const std::string& label) {
-    text << label << " (work " << check.driver_work << " in the step of growth " << check.growth
-         << ")";
+    text << label << ", with work " << check.driver_work << " in the step of growth "
+         << check.growth;
   };
   switch (check.driver) {
     case EnergyDriver::kForce:

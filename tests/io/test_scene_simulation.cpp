@@ -9,6 +9,9 @@
 #include "io/scene.h"
 #include "io/scene_simulation.h"
 
+#include "core/error.h"
+#include "dynamics/core/forces.h"
+
 namespace dnurbs {
 namespace {
 
@@ -124,6 +127,53 @@ TEST(SceneCost, LocalSculptingKeepsTheSupportOfTheSpringGrownByTheMargin) {
   const Eigen::VectorXd after = simulation.system().coordinates(0);
   EXPECT_GT(after[3 * (4 * 9 + 4) + 2], 0.0);  // the centre control point moved up
   EXPECT_EQ(after[3 * (1 * 9 + 1) + 2], before[3 * (1 * 9 + 1) + 2]);  // (1, 1) is frozen
+}
+
+// A simulation rebuilt with another setting continues where the old one was: Newmark's next step
+// from the carried state equals the old simulation's next step when nothing else changed.
+TEST(SceneSimulation, ContinueFromCarriesTheStateAndTheLastAcceleration) {
+  const Scene scene = read_scene_file(kScenes / "hat_demo.json");
+  SceneSimulation first(scene);
+  for (int step = 0; step < 30; ++step) {
+    first.step();
+  }
+  SceneSimulation second(scene);
+  second.continue_from(first);
+  EXPECT_EQ(second.steps_done(), 30);
+  EXPECT_EQ(second.system().time(), first.system().time());
+  EXPECT_EQ(second.system().velocities(), first.system().velocities());
+  first.step();
+  second.step();
+  const Eigen::VectorXd q = first.system().coordinates();
+  EXPECT_LT((second.system().coordinates() - q).norm(), 1e-12 * q.norm());
+  // Another scene's sizes are refused
+  SceneSimulation other(sculpting_scene(1, false));
+  EXPECT_THROW(other.continue_from(first), Error);
+}
+
+// Springs and forces added while the scene runs act as the scene's own, and a spring removed
+// stops acting.
+TEST(SceneSimulation, InteractiveSpringsAndForcesActLikeTheScenesOwn) {
+  nlohmann::json json = nlohmann::json::parse(scene_to_json(sculpting_scene(0, false)));
+  json["models"][0]["boundary"].erase("local_sculpting_margin");
+  SceneSimulation scripted(parse_scene_json(json.dump(), "<scripted>"));
+  nlohmann::json bare = json;
+  bare["forces"] = nlohmann::json::array();
+  SceneSimulation interactive(parse_scene_json(bare.dump(), "<bare>"));
+  const SpringState state = scripted.system().spring_state(0, 0.0);
+  const int id = interactive.add_interactive_spring(
+      0, [state](double) { return state; }, "the test's drag");
+  for (int step = 0; step < 20; ++step) {
+    scripted.step();
+    interactive.step();
+  }
+  const Eigen::VectorXd q = scripted.system().coordinates();
+  EXPECT_LT((interactive.system().coordinates() - q).norm(), 1e-12 * q.norm());
+  interactive.remove_interactive_spring(id);
+  EXPECT_FALSE(interactive.system().has_spring(id));
+  const int force = interactive.add_interactive_force(
+      0, point_force(Eigen::Vector2d(0.5, 0.5), Eigen::Vector3d(0, 0, 1)), "a push");
+  EXPECT_EQ(force, interactive.system().force_count() - 1);
 }
 
 }  // namespace
