@@ -402,6 +402,11 @@ std::vector<std::string> SculptSession::save() const {
     const std::filesystem::path path = output_file_path(options_.output_directory, stem + ".obj");
     export_mesh(simulation_->mesh(i, scene_.output.resolution), path);
     files.push_back(path.string());
+    // assimp's OBJ writer puts the material beside the mesh
+    if (const auto material = std::filesystem::path(path).replace_extension(".mtl");
+        std::filesystem::is_regular_file(material)) {
+      files.push_back(material.string());
+    }
   }
   return files;
 }
@@ -501,7 +506,7 @@ std::string SculptSession::scene_message(int client) const {
 
 std::string SculptSession::status_message(double now) const {
   const auto per_second = [now](const std::deque<double>& times) {
-    return std::count_if(times.begin(), times.end(), [now](double t) { return t >= now - 1.0; });
+    return std::count_if(times.begin(), times.end(), [now](double t) { return t > now - 1.0; });
   };
   const EnergyBudget& budget = simulation_->energy_budget();
   const double spring = simulation_->system().spring_energy();

@@ -372,7 +372,7 @@ TEST(SculptSession, SaveWritesTheCurrentShapesIntoTheOutputFolderOnly) {
   }
   const Json saved = only_reply(session.handle(client, R"({"type":"save","id":3})", 0.0));
   EXPECT_EQ(saved["type"], "saved");
-  EXPECT_EQ(saved["files"].size(), 6U);  // hat and torus: shape + OBJ; link and bob: OBJ
+  EXPECT_EQ(saved["files"].size(), 10U);  // hat and torus: shape, OBJ, MTL; link and bob: OBJ, MTL
   for (const Json& file : saved["files"]) {
     EXPECT_EQ(std::filesystem::path(file.get<std::string>()).parent_path(), o.output_directory);
   }
