@@ -219,6 +219,8 @@ function loop() {
 }
 requestAnimationFrame(loop);
 
+setInterval(() => view.adaptResolution(renderRate.value, frameRate.value), 1000);
+
 setInterval(() => {
   hooks.renderFps = renderRate.value;
   hooks.receivedFps = frameRate.value;

@@ -30,7 +30,7 @@ function uvRange(uv, dimension) {
 export class View {
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     container.appendChild(this.renderer.domElement);
     this.canvas = this.renderer.domElement;
@@ -95,8 +95,10 @@ export class View {
       geometry.setIndex(new THREE.BufferAttribute(Index.from(model.triangles), 1));
       geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
       geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
-      const material = new THREE.MeshStandardMaterial({
-        color: kPalette[i % kPalette.length], roughness: 0.55, metalness: 0.05,
+      // Phong, not physically based: a third of the fragment work, which software renderers
+      // (and small GPUs) feel at 60 frames a second
+      const material = new THREE.MeshPhongMaterial({
+        color: kPalette[i % kPalette.length], shininess: 30, specular: 0x222222,
         side: THREE.DoubleSide,
         // pushed back a little in depth so that a control net lying on the surface shows
         polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
@@ -312,6 +314,21 @@ export class View {
       position.needsUpdate = true;
     }
     this.dirty = true;
+  }
+
+  // Dynamic resolution: when frames arrive faster than the page draws them (a software
+  // renderer, a small GPU), draw fewer pixels, down to half the device's, so that the view keeps
+  // 30 frames a second or more; draw more again when there is room.
+  adaptResolution(drawn, received) {
+    const device = window.devicePixelRatio || 1;
+    const ratio = this.renderer.getPixelRatio();
+    let next = ratio;
+    if (drawn < Math.min(30, received - 2)) next = Math.max(0.5 * device, ratio * 0.85);
+    else if (drawn >= Math.min(55, received - 1)) next = Math.min(device, ratio * 1.1);
+    if (next !== ratio) {
+      this.renderer.setPixelRatio(next);  // r111: resizes the drawing buffer, not the canvas
+      this.dirty = true;
+    }
   }
 
   render() {
