@@ -178,6 +178,7 @@ class WebSocketConnection : public std::enable_shared_from_this<WebSocketConnect
   std::atomic<bool> needs_full_frame{false};
   std::atomic<std::size_t> waiting{0};  // messages queued for the simulation thread
   std::atomic<std::size_t> dropped{0};  // messages dropped since the last report
+  double last_drop_report = -1e300;     // simulation thread only
 
  private:
   void read() {
@@ -414,7 +415,10 @@ void SculptServer::State::handle_events(double now) {
       broadcast({shared(session.status_message(now)), false});
     } else if (event.kind == Event::kMessage && client != clients.end()) {
       --event.connection->waiting;
-      if (const std::size_t dropped = event.connection->dropped.exchange(0); dropped > 0) {
+      // Dropped messages are reported once a second at most, as the session reports a flood
+      if (event.connection->dropped.load() > 0 && now - event.connection->last_drop_report >= 1.0) {
+        event.connection->last_drop_report = now;
+        const std::size_t dropped = event.connection->dropped.exchange(0);
         post_to(event.connection,
                 {shared(R"({"type":"error","request":"","message":")" + std::to_string(dropped) +
                         " messages dropped: more than " + std::to_string(kMaxWaitingMessages) +

@@ -67,11 +67,16 @@ function client(port) {
 const errors = (c) => c.replies.filter((m) => m.type === 'error');
 const last = (c, type) => c.replies.filter((m) => m.type === type).at(-1);
 
+// Sends `message` with a fresh id; resolves with the reply of `type` or the error of that id
+// (other errors, such as a report of dropped messages, are not this request's).
+let nextId = 1;
 async function request(c, message, type) {
   const before = c.replies.length;
-  c.ws.send(JSON.stringify(message));
+  const id = nextId++;
+  c.ws.send(JSON.stringify({ ...message, id }));
   for (let i = 0; i < 100; i++) {
-    const reply = c.replies.slice(before).find((m) => m.type === type || m.type === 'error');
+    const reply = c.replies.slice(before).find(
+      (m) => (m.type === type && (m.id === undefined || m.id === id)) || (m.type === 'error' && m.id === id));
     if (reply) return reply;
     await sleep(20);
   }
