@@ -235,6 +235,14 @@ SparseCholesky::SparseCholesky(const SparseCholeskySettings& settings)
                      ", both must be >= 0");
   }
 }
+CholeskyBackend resolve_backend(const SparseCholeskySettings& settings, Eigen::Index rows) {
+  if (settings.backend != CholeskyBackend::kAutomatic) {
+    return settings.backend;
+  }
+  return rows >= settings.supernodal_threshold ? CholeskyBackend::kCholmodSupernodal
+                                               : CholeskyBackend::kSimplicialLdlt;
+}
+
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&& other) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&& other) noexcept = default;
@@ -242,11 +250,7 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&& other) noexcept = def
 void SparseCholesky::analyze(const SparseMatrix& a) {
   check_square(a, "analysis");
   Backends& b = *backends_;
-  b.active = settings_.backend;
-  if (b.active == CholeskyBackend::kAutomatic) {
-    b.active = a.rows() >= settings_.supernodal_threshold ? CholeskyBackend::kCholmodSupernodal
-                                                          : CholeskyBackend::kSimplicialLdlt;
-  }
+  b.active = resolve_backend(settings_, a.rows());
   b.rows = -1;  // no valid analysis until this one succeeds
   if (b.active == CholeskyBackend::kCholmodSupernodal) {
     if (!b.cholmod) {

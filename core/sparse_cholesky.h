@@ -42,6 +42,10 @@ struct SparseCholeskySettings {
   int constant_supernodal_threshold = kDefaultConstantSupernodalThreshold;
 };
 
+/// The backend that `settings` choose for a matrix of `rows` rows (kAutomatic resolved by
+/// supernodal_threshold; an explicit backend as it is). Never kAutomatic.
+CholeskyBackend resolve_backend(const SparseCholeskySettings& settings, Eigen::Index rows);
+
 /// The factorization P A P^T = L D L^T (or L L^T) of a symmetric positive definite n by n matrix
 /// A, with its symbolic analysis (ordering, elimination tree, pattern of L) kept while the pattern
 /// of A stays: the integrators refactor state-dependent matrices every step with one pattern.

@@ -126,11 +126,8 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
   out << "\n";
   const SceneIntegrator& integrator = scene.integrator;
   // IntegratorSettings::automatic_newton: free-weight models iterate Newton with 0 set
-  bool automatic = false;
-  for (int i = 0; i < simulation.system().model_count(); ++i) {
-    automatic = automatic || (integrator.newton_iterations == 0 && integrator.automatic_newton &&
-                              simulation.system().model(i).needs_newton_iterations());
-  }
+  const bool automatic =
+      automatic_newton_applies(simulation.integrator().settings(), simulation.system());
   const int iterations = automatic ? kAutomaticNewtonIterations : integrator.newton_iterations;
   out << "integrator: " << integrator.scheme << ", dt = " << integrator.dt << ", Newton iterations "
       << integrator.newton_iterations;

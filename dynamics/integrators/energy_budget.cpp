@@ -183,10 +183,9 @@ std::string divergence_setting(const IntegratorSettings& settings, const System&
          << " (its explicit damping and forces are stable only for small dt)";
     return text.str();
   }
+  const bool iterated = settings.newton_iterations > 0 || automatic_newton_applies(settings, system);
   for (int i = 0; i < system.model_count(); ++i) {
-    const Model& model = system.model(i);
-    if (!model.matrices_are_constant() && settings.newton_iterations == 0 &&
-        !(settings.automatic_newton && model.needs_newton_iterations())) {
+    if (!system.model(i).matrices_are_constant() && !iterated) {
       text << "model " << i << "'s state-dependent matrices in a linearly implicit step "
            << "(integrator.newton_iterations = 0, dt = " << dt << ")";
       return text.str();

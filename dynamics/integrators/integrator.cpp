@@ -28,6 +28,18 @@ int first_non_finite(const Eigen::VectorXd& x) {
 
 }  // namespace
 
+bool automatic_newton_applies(const IntegratorSettings& settings, const System& system) {
+  if (settings.newton_iterations != 0 || !settings.automatic_newton) {
+    return false;
+  }
+  for (int i = 0; i < system.model_count(); ++i) {
+    if (system.model(i).needs_newton_iterations()) {
+      return true;
+    }
+  }
+  return false;
+}
+
 IntegratorScheme parse_integrator_scheme(std::string_view name) {
   if (name == "central") {
     return IntegratorScheme::kCentral;
@@ -306,8 +318,7 @@ void Integrator::step(System& system, double dt) {
   last_iterations_ = 0;
   int iterations = settings_.newton_iterations;
   double tolerance = settings_.newton_tolerance;
-  if (iterations == 0 && settings_.automatic_newton && any_state_dependent &&
-      needs_newton_iterations(system)) {
+  if (any_state_dependent && automatic_newton_applies(settings_, system)) {
     iterations = kAutomaticNewtonIterations;
     tolerance = kAutomaticNewtonTolerance;
   }
@@ -339,15 +350,6 @@ void Integrator::step(System& system, double dt) {
                      "); the state is unchanged");
   }
   system.commit_step(w.q_new, w.v_new, w.a, t + dt);
-}
-
-bool Integrator::needs_newton_iterations(const System& system) {
-  for (int i = 0; i < system.model_count(); ++i) {
-    if (system.model(i).needs_newton_iterations()) {
-      return true;
-    }
-  }
-  return false;
 }
 
 bool Integrator::factor_constant_blocks(const System& system) {
@@ -501,9 +503,8 @@ bool Integrator::assemble_state_dependent_blocks(const System& system, bool refa
     auto rhs = w.rhs.segment(block->velocity_offset, block->velocity_count);
     // The lean factorization serves blocks without spring terms, by CHOLMOD where the backend
     // setting picks the supernodal factorization
-    const bool supernodal = cholesky.backend == CholeskyBackend::kCholmodSupernodal ||
-                            (cholesky.backend == CholeskyBackend::kAutomatic &&
-                             block->free.free_count() >= cholesky.supernodal_threshold);
+    const bool supernodal = resolve_backend(cholesky, block->free.free_count()) ==
+                            CholeskyBackend::kCholmodSupernodal;
     const bool lean = settings_.lean_step && block->springs.term_count() == 0;
     block->fused = settings_.lean_step;
     block->reused = lean && !refactor && block->lean_active;

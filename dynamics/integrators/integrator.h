@@ -100,6 +100,11 @@ struct IntegratorSettings {
   SparseCholeskySettings cholesky{CholeskyBackend::kAutomatic, kDefaultSupernodalThreshold};
 };
 
+/// True when `settings` leave the Newton iterations to IntegratorSettings::automatic_newton
+/// (newton_iterations = 0, automatic_newton set) and some model of `system`
+/// needs_newton_iterations(): its steps then iterate up to kAutomaticNewtonIterations times.
+bool automatic_newton_applies(const IntegratorSettings& settings, const System& system);
+
 /// The linear system of one step, handed to a solve hook (a constraint layer adds its rows
 /// C_q a = ... around it). Vectors are velocity-space (System::velocity_count()).
 struct StepSystem {
@@ -178,9 +183,6 @@ class Integrator {
   // Factors the constant blocks whose coefficients changed; true if some block is
   // state-dependent.
   bool factor_constant_blocks(const System& system);
-  /// True if some model of `system` needs_newton_iterations() (IntegratorSettings::
-  /// automatic_newton).
-  static bool needs_newton_iterations(const System& system);
   // One solve of A delta = b at the current iterate (re-factoring state-dependent blocks), then
   // a += delta; `with_acceleration`: b subtracts M a (after the first solve or a warm start).
   // `previous_correction` < 0 (the first solve of a step): state-dependent blocks are factored
