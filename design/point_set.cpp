@@ -42,32 +42,34 @@ Eigen::MatrixX3d load_points(const std::filesystem::path& path) {
     if (first == std::string::npos || line[first] == '#') {
       continue;
     }
+    // Messages describe a bad line and never quote it: the path may lead to any file (a link to
+    // a secret one), whose contents must not reach the terminal or a log.
     std::istringstream stream(line);
-    Eigen::Vector3d point;
-    std::string extra;
-    // Read as strings so that "nan" and "inf" are recognized and reported as non-finite.
-    std::string x;
-    std::string y;
-    std::string z;
-    if (!(stream >> x >> y >> z) || (stream >> extra)) {
-      throw make_error("line ", line_number, " of the point file '", path.string(),
-                       "' does not hold three numbers: '", line, "'");
+    std::vector<std::string> fields;
+    for (std::string field; stream >> field;) {
+      fields.push_back(field);
     }
-    const std::string* parts[3] = {&x, &y, &z};
+    if (fields.size() != 3) {
+      throw make_error("line ", line_number, " of the point file '", path.string(), "' holds ",
+                       fields.size(), fields.size() == 1 ? " field" : " fields",
+                       " where three numbers x y z were expected");
+    }
+    Eigen::Vector3d point;
     for (int c = 0; c < 3; ++c) {
+      const std::string& field = fields[static_cast<size_t>(c)];
       size_t used = 0;
       try {
-        point[c] = std::stod(*parts[c], &used);
+        point[c] = std::stod(field, &used);  // "nan" and "inf" are read, then refused below
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used != parts[c]->size()) {
-        throw make_error("line ", line_number, " of the point file '", path.string(), "': '",
-                         *parts[c], "' is not a number");
+      if (used != field.size()) {
+        throw make_error("line ", line_number, " of the point file '", path.string(),
+                         "': coordinate ", "xyz"[c], " is not a number");
       }
       if (!std::isfinite(point[c])) {
         throw make_error("line ", line_number, " of the point file '", path.string(),
-                         "' has a non-finite coordinate (", *parts[c], ")");
+                         "': coordinate ", "xyz"[c], " is not finite");
       }
     }
     points.push_back(point);

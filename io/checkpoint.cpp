@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
+#include "io/json_messages.h"
 
 namespace dnurbs {
 namespace {
@@ -89,12 +90,7 @@ std::string checkpoint_to_json(const Checkpoint& checkpoint) {
 }
 
 Checkpoint parse_checkpoint_json(const std::string& text, const std::string& source) {
-  Json root;
-  try {
-    root = Json::parse(text);
-  } catch (const Json::parse_error& error) {
-    fail(source, "(document)", std::string("expected valid JSON: ") + error.what());
-  }
+  const Json root = parse_json_document(text, source);
   if (!root.is_object()) {
     fail(source, "(top level)", "expected a checkpoint object");
   }

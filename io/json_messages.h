@@ -16,4 +16,9 @@ std::string describe_json_value(const nlohmann::json& value);
 /// The JSON path of element `index` of the array at `path`: `path[index]`.
 std::string json_index_path(const std::string& path, std::size_t index);
 
+/// Parses a whole JSON document. Any failure of nlohmann's parser (a syntax error, or a number
+/// that overflows a double such as 1e999) throws Error "`source`: (document): expected valid
+/// JSON at line L, column C: <what>" (the position of an overflowing number is found in `text`).
+nlohmann::json parse_json_document(const std::string& text, const std::string& source);
+
 }  // namespace dnurbs

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <limits>
 #include <memory>
 #include <string_view>
 #include <system_error>
@@ -15,6 +16,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
+#include "io/output_path.h"
 
 namespace dnurbs {
 namespace {
@@ -90,6 +92,15 @@ void check_mesh(const TriangleMesh& mesh, size_t index) {
   if (!mesh.vertices.allFinite()) {
     throw make_error(name, " has a non-finite vertex");
   }
+  // The files hold single precision (ai_real): a vertex beyond its range would be written as inf
+  constexpr double kLargest = std::numeric_limits<ai_real>::max();
+  for (Eigen::Index row = 0; row < mesh.vertices.rows(); ++row) {
+    if (mesh.vertices.row(row).cwiseAbs().maxCoeff() > kLargest) {
+      throw make_error(name, " has vertex ", row, " = (", mesh.vertices(row, 0), ", ",
+                       mesh.vertices(row, 1), ", ", mesh.vertices(row, 2),
+                       ") beyond the single precision of mesh files (", kLargest, ")");
+    }
+  }
 }
 
 aiMesh* to_assimp_mesh(const TriangleMesh& mesh, unsigned material) {
@@ -163,7 +174,9 @@ std::unique_ptr<aiScene> build_scene(const std::vector<TriangleMesh>& meshes) {
   scene->mRootNode->mChildren = new aiNode*[count]();
   for (unsigned i = 0; i < count; ++i) {
     const TriangleMesh& mesh = meshes[i];
-    const std::string name = mesh.name.empty() ? "mesh_" + std::to_string(i) : mesh.name;
+    // A name goes into the file as text (OBJ "o"/"g"/"usemtl", MTL "newmtl", glTF JSON): only a
+    // plain name (io/output_path.h), so that none can break a line or inject records
+    const std::string name = output_file_stem(mesh.name, "mesh_" + std::to_string(i));
     TriangleMesh named = mesh;
     named.name = name;
     scene->mMeshes[i] = to_assimp_mesh(named, i);

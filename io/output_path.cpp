@@ -7,14 +7,17 @@
 
 namespace dnurbs {
 
-std::string output_file_stem(const std::string& name, const std::string& fallback) {
+bool is_plain_name(std::string_view name) {
   const auto plain = [](char c) {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' ||
            c == '_' || c == '-';
   };
-  const bool safe = !name.empty() && name.size() <= 100 && name.front() != '.' &&
-                    std::all_of(name.begin(), name.end(), plain);
-  return safe ? name : fallback;
+  return !name.empty() && name.size() <= 100 && name.front() != '.' &&
+         std::all_of(name.begin(), name.end(), plain);
+}
+
+std::string output_file_stem(const std::string& name, const std::string& fallback) {
+  return is_plain_name(name) ? name : fallback;
 }
 
 std::filesystem::path output_file_path(const std::filesystem::path& directory,

@@ -4,11 +4,20 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace dnurbs {
 
-/// `name` if it is a plain file-name stem (1 to 100 characters from A-Z a-z 0-9 . _ -, not
-/// starting with '.'), otherwise `fallback`.
+/// True if `name` is a plain name: 1 to 100 characters from A-Z a-z 0-9 . _ -, not starting
+/// with '.'. Scenes restrict the names of models, probes and outputs to these (they become file
+/// names, CSV columns and names inside mesh files).
+bool is_plain_name(std::string_view name);
+
+/// What is_plain_name accepts, for messages.
+inline constexpr const char* kPlainNameRule =
+    "1 to 100 letters, digits, '_', '-' or '.', not starting with '.'";
+
+/// `name` if it is a plain name (is_plain_name), otherwise `fallback`.
 std::string output_file_stem(const std::string& name, const std::string& fallback);
 
 /// directory / file_name, creating the directory if it is missing. Throws Error naming the

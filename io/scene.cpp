@@ -74,7 +74,7 @@ SceneModel read_model(const SceneReader& reader, const JsonValue& value, const s
   SceneModel model;
   model.name = "model" + std::to_string(index);
   if (const JsonValue* name = reader.find(value, "name")) {
-    model.name = reader.string(*name, join_json_path(path, "name"));
+    model.name = reader.name(*name, join_json_path(path, "name"));
   }
   model.spec = type.read(reader, value, path);
   if (const JsonValue* boundary = reader.find(value, "boundary")) {
@@ -196,12 +196,7 @@ void read_probes(const SceneReader& reader, const ModelNames& names, const JsonV
     SceneProbe p;
     p.name = "probe" + std::to_string(i);
     if (const JsonValue* name = reader.find(probe, "name")) {
-      p.name = reader.string(*name, join_json_path(path, "name"));
-      if (p.name.empty() || p.name.find_first_of(",\"\n\r") != std::string::npos) {
-        reader.fail(join_json_path(path, "name"),
-                    "expected a non-empty name without commas, quotes or line breaks (it "
-                    "names CSV columns)");
-      }
+      p.name = reader.name(*name, join_json_path(path, "name"));  // names CSV columns
     }
     p.model = names.require(reader, probe, path, "model");
     p.at = reader.parameter(reader.require(probe, path, "at", "a material parameter [u, v]"),
@@ -226,12 +221,7 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   reader.integer_key(output, path, "log_every", o.log_every, 1, 100000000);
   reader.integer_key(output, path, "checkpoint_every", o.checkpoint_every, 0, 100000000);
   if (const JsonValue* name = reader.find(output, "name")) {
-    o.name = reader.string(*name, "output.name");
-    if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos ||
-        o.name.starts_with(".")) {
-      reader.fail("output.name", "expected a file stem without slashes or a leading dot, got " +
-                                     describe_json_value(*name));
-    }
+    o.name = reader.name(*name, "output.name");
   }
   if (o.preview && o.format != "obj") {
     reader.fail("output.preview",
@@ -439,18 +429,7 @@ bool operator==(const Scene& a, const Scene& b) {
 Scene parse_scene_json(const std::string& text, const std::string& source,
                        const std::filesystem::path& directory) {
   const SceneReader reader(source, directory);
-  JsonValue root;
-  try {
-    root = JsonValue::parse(text);
-  } catch (const JsonValue::parse_error& error) {
-    // nlohmann's message carries the line and column
-    std::string message = error.what();
-    const auto position = message.find("parse error");
-    reader.fail("(document)",
-                "expected valid JSON: " +
-                    (position == std::string::npos ? message : message.substr(position)));
-  }
-  return read_scene(reader, root);
+  return read_scene(reader, parse_json_document(text, source));
 }
 
 Scene read_scene_file(const std::filesystem::path& path) {

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/json_messages.h"
+#include "io/output_path.h"
 
 namespace dnurbs {
 namespace {
@@ -149,6 +150,15 @@ std::string SceneReader::string(const JsonValue& value, const std::string& path)
     fail(path, "expected a string, got " + describe_json_value(value));
   }
   return value.get<std::string>();
+}
+
+std::string SceneReader::name(const JsonValue& value, const std::string& path) const {
+  std::string result = string(value, path);
+  if (!is_plain_name(result)) {
+    fail(path, std::string("expected a name of ") + kPlainNameRule + ", got " +
+                   describe_json_value(value));
+  }
+  return result;
 }
 
 std::string SceneReader::choice(const JsonValue& value, const std::string& path,

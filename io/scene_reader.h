@@ -64,6 +64,9 @@ class SceneReader {
   void boolean_key(const JsonValue& object, const std::string& path, const char* key,
                    bool& b) const;
   std::string string(const JsonValue& value, const std::string& path) const;
+  /// A string that is a plain name (io/output_path.h: is_plain_name): the names of models,
+  /// probes and outputs, which become file names, CSV columns and names inside mesh files.
+  std::string name(const JsonValue& value, const std::string& path) const;
   /// One of `options`.
   std::string choice(const JsonValue& value, const std::string& path,
                      std::initializer_list<const char*> options) const;

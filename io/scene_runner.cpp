@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "io/atomic_write.h"
 #include "io/csv_log.h"
 #include "io/mesh_export.h"
 #include "io/output_path.h"
@@ -43,8 +44,11 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
   const int resolution = options.resolution > 0 ? options.resolution : output.resolution;
   const std::filesystem::path& directory = options.output_directory;
   create_output_directory(directory);
+  // Temporaries of a killed earlier run in this folder (io/atomic_write.h)
+  remove_stale_temporaries(directory);
   if (output.mesh_every > 0) {
     create_output_directory(directory / "frames");
+    remove_stale_temporaries(directory / "frames");
   }
 
   SceneRunResult result;

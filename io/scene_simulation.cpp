@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -452,6 +453,20 @@ void SceneSimulation::restore(const Checkpoint& checkpoint, const std::string& s
     throw make_error(source, ": scene_hash: expected ", hash_, " (the hash of ", scene_.source,
                      "), got ", checkpoint.scene_hash,
                      ": the checkpoint belongs to another scene or the scene has changed");
+  }
+  // The step and time must be those of this run: a step beyond the run or a time that is not
+  // step * dt would resume into a different state than the run that wrote the checkpoint
+  if (checkpoint.step > scene_.step_count()) {
+    throw make_error(source, ": step: expected a step of this run (0..", scene_.step_count(),
+                     "), got ", checkpoint.step);
+  }
+  const double expected_time = checkpoint.step * scene_.integrator.dt;
+  // The run's time is a sum of `step` dt's: rounding of at most step ulps of the time
+  if (!(std::abs(checkpoint.time - expected_time) <= 4.0 * std::numeric_limits<double>::epsilon() *
+                                                         (checkpoint.step + 1) *
+                                                         std::max(1.0, std::abs(expected_time)))) {
+    throw make_error(source, ": time: expected step * dt = ", checkpoint.step, " * ",
+                     scene_.integrator.dt, " = ", expected_time, ", got ", checkpoint.time);
   }
   if (checkpoint.coordinates.size() != system_.coordinate_count()) {
     throw make_error(source, ": q: expected ", system_.coordinate_count(), " coordinates, got ",

@@ -342,28 +342,7 @@ std::string to_json(const NurbsSurface& surface) {
 }  // namespace
 
 Shape parse_shape_json(const std::string& text, const std::string& source) {
-  Json root;
-  try {
-    root = Json::parse(text);
-  } catch (const Json::parse_error& error) {
-    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C:
-    // <detail>"; keep "line L, column C: <detail>"
-    std::string message = error.what();
-    if (const auto at = message.find("at line"); at != std::string::npos) {
-      message = message.substr(at + 3);
-    } else if (const auto bracket = message.find("] "); bracket != std::string::npos) {
-      message = message.substr(bracket + 2);
-    }
-    throw Error(source + ": invalid JSON at " + message);
-  } catch (const Json::exception& error) {
-    // For example "number overflow parsing '1e999'" (out_of_range.406)
-    std::string message = error.what();
-    if (const auto bracket = message.find("] "); bracket != std::string::npos) {
-      message = message.substr(bracket + 2);
-    }
-    throw Error(source + ": invalid JSON: " + message);
-  }
-  return ShapeReader(source).shape(root);
+  return ShapeReader(source).shape(parse_json_document(text, source));
 }
 
 Shape read_shape_file(const std::filesystem::path& path) {

@@ -184,13 +184,7 @@ TriangularNurbsSurface read_triangular_shape(const SceneReader& reader, const Js
 TriangularNurbsSurface parse_triangular_shape_json(const std::string& text,
                                                    const std::string& source) {
   const SceneReader reader(source, ".");
-  JsonValue root;
-  try {
-    root = JsonValue::parse(text);
-  } catch (const JsonValue::exception& error) {
-    reader.fail("(document)", std::string("expected valid JSON: ") + error.what());
-  }
-  return read_triangular_shape(reader, root, "");
+  return read_triangular_shape(reader, parse_json_document(text, source), "");
 }
 
 TriangularNurbsSurface read_triangular_shape_file(const std::filesystem::path& path) {

@@ -37,8 +37,16 @@ exit codes: 0 ok, 1 bad shape file or parameter, 2 bad command line
 
 namespace {
 
-// Text built through streams: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string
-std::string json_vector(const Eigen::Vector3d& v) {
+// Text built through streams: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+// The output is always valid JSON: a non-finite value (the shape's coordinates or weights
+// overflow a double at that parameter) is an Error naming the place and the quantity.
+std::string json_vector(const Eigen::Vector3d& v, const std::string& file, const std::string& flag,
+                        const std::string& quantity) {
+  if (!v.allFinite()) {
+    throw make_error(file, ": --at ", flag, ": ", quantity, " = (", v.x(), ", ", v.y(), ", ", v.z(),
+                     ") is not finite (the shape's coordinates or weights overflow a double "
+                     "there)");
+  }
   std::ostringstream text;
   text << '[' << json_double(v.x()) << ", " << json_double(v.y()) << ", " << json_double(v.z())
        << ']';
@@ -58,10 +66,12 @@ std::string evaluate(const NurbsCurve& curve, const std::vector<double>& at, int
   }
   std::ostringstream text;
   text << "    {\"u\": " << json_double(at[0])
-       << ", \"point\": " << json_vector(derivatives.row(0).transpose())
+       << ", \"point\": " << json_vector(derivatives.row(0).transpose(), file, flag, "the point")
        << ",\n     \"derivatives\": [";
   for (int k = 0; k <= order; ++k) {
-    text << (k ? ", " : "") << json_vector(derivatives.row(k).transpose());
+    text << (k ? ", " : "")
+         << json_vector(derivatives.row(k).transpose(), file, flag,
+                        "the derivative of order " + std::to_string(k));
   }
   text << "]}";
   return text.str();
@@ -81,13 +91,17 @@ std::string evaluate(const NurbsSurface& surface, const std::vector<double>& at,
   }
   std::ostringstream text;
   text << "    {\"u\": " << json_double(at[0]) << ", \"v\": " << json_double(at[1])
-       << ", \"point\": " << json_vector(derivatives(0, 0)) << ",\n     \"derivatives\": {";
+       << ", \"point\": " << json_vector(derivatives(0, 0), file, flag, "the point")
+       << ",\n     \"derivatives\": {";
   bool first = true;
   for (int total = 0; total <= order; ++total) {
     for (int k = total; k >= 0; --k) {
       const int l = total - k;
-      text << (first ? "" : ", ") << "\"S" << std::string(static_cast<size_t>(k), 'u')
-           << std::string(static_cast<size_t>(l), 'v') << "\": " << json_vector(derivatives(k, l));
+      std::string name = "S";
+      name.append(static_cast<size_t>(k), 'u');
+      name.append(static_cast<size_t>(l), 'v');
+      text << (first ? "" : ", ") << '"' << name
+           << "\": " << json_vector(derivatives(k, l), file, flag, name);
       first = false;
     }
   }

@@ -95,6 +95,15 @@ TEST(Checkpoint, MalformedCheckpointsNameTheKey) {
   bad = good;
   bad.replace(bad.find("\"step\": 3"), 9, "\"step\": -3");
   EXPECT_THAT(message(bad), HasSubstr("cp.json: step: expected a step count"));
+  // A number beyond a double names its place; a repeated key is refused, not overwritten
+  bad = good;
+  bad.replace(bad.find("[1, 2]"), 6, "[1, 1e999]");
+  EXPECT_THAT(message(bad), HasSubstr("cp.json: (document): expected valid JSON at line 2, "
+                                      "column 40: number overflow parsing '1e999'"));
+  bad = good;
+  bad.replace(bad.find("\"step\": 3"), 9, "\"step\": 3, \"step\": 9");
+  EXPECT_THAT(message(bad), HasSubstr("cp.json: (document): expected every key once in an "
+                                      "object, got string \"step\" twice"));
 }
 
 // Runs `steps` steps uninterrupted, and `split` steps + checkpoint (through its JSON text) +
@@ -148,6 +157,38 @@ TEST(ResumedRun, CheckpointOfAnotherSceneIsRejected) {
   } catch (const Error& error) {
     EXPECT_THAT(error.what(), HasSubstr("old.json: scene_hash: expected"));
   }
+}
+
+// A checkpoint must be one this run could have written: its step within the run, its time
+// step * dt (to the rounding of the sum of step dt's)
+TEST(ResumedRun, CheckpointOutsideTheRunIsRejected) {
+  const Scene scene = read_scene_file(kExamples / "snake_contour.json");
+  SceneSimulation simulation(scene);
+  for (int i = 0; i < 5; ++i) {
+    simulation.step();
+  }
+  const Checkpoint written = simulation.checkpoint();
+  const auto refusal = [&](const Checkpoint& checkpoint) -> std::string {
+    SceneSimulation fresh(scene);
+    try {
+      fresh.restore(checkpoint, "cp.json");
+    } catch (const Error& error) {
+      EXPECT_EQ(fresh.steps_done(), 0);  // nothing restored
+      return error.what();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(refusal(written), "accepted");
+  Checkpoint bad = written;
+  bad.step = scene.step_count() + 1;
+  EXPECT_THAT(refusal(bad), HasSubstr("cp.json: step: expected a step of this run (0.." +
+                                      std::to_string(scene.step_count()) + ")"));
+  bad = written;
+  bad.time = -written.time;
+  EXPECT_THAT(refusal(bad), HasSubstr("cp.json: time: expected step * dt = 5 * "));
+  bad = written;
+  bad.time = written.time * (1.0 + 1e-9);
+  EXPECT_THAT(refusal(bad), HasSubstr("cp.json: time: expected"));
 }
 
 // The runner: stop part-way (as if killed after the last periodic checkpoint), resume from the

@@ -149,6 +149,53 @@ TEST(MeshExport, ObjKeepsOneObjectPerMeshWithNormalsAndUv) {
   std::filesystem::remove_all(directory);
 }
 
+// A mesh name goes into the files as text: one that is not a plain name (io/output_path.h) is
+// replaced by mesh_<i>, so that a name with line breaks cannot inject OBJ or MTL records
+TEST(MeshExport, NamesThatAreNotPlainCannotInjectRecords) {
+  const auto directory = fresh_directory("hostile_names");
+  std::vector<TriangleMesh> meshes = sample_meshes();
+  meshes[0].name = "rod\nv nan nan nan\nf 1 2 99999";
+  meshes[1].name = std::string("sphere\0tail", 11);
+  export_meshes(meshes, directory / "two.obj");
+  for (const char* file : {"two.obj", "two.mtl"}) {
+    std::ifstream in(directory / file);
+    std::string line;
+    int lines = 0;
+    while (std::getline(in, line)) {
+      ++lines;
+      EXPECT_THAT(line, ::testing::Not(HasSubstr("nan"))) << file;
+      EXPECT_NE(line, "f 1 2 99999") << file;
+      EXPECT_EQ(line.find('\0'), std::string::npos) << file;
+    }
+    EXPECT_GT(lines, 3) << file;
+  }
+  const std::vector<TriangleMesh> imported = import_meshes(directory / "two.obj");
+  ASSERT_EQ(imported.size(), 2u);
+  EXPECT_EQ(imported[0].name, "mesh_0");
+  EXPECT_EQ(imported[1].name, "mesh_1");
+  EXPECT_EQ(imported[0].triangle_count(), meshes[0].triangle_count());
+  EXPECT_EQ(imported[1].triangle_count(), meshes[1].triangle_count());
+  std::filesystem::remove_all(directory);
+}
+
+// Mesh files hold single precision: a finite double beyond it is an error, not "v inf"
+TEST(MeshExport, VertexBeyondSinglePrecisionIsAnErrorAndWritesNothing) {
+  const auto directory = fresh_directory("float_range");
+  std::vector<TriangleMesh> meshes = sample_meshes();
+  meshes[1].vertices(3, 1) = 1e50;
+  for (const char* file : {"big.obj", "big.stl", "big.ply", "big.gltf"}) {
+    try {
+      export_meshes(meshes, directory / file);
+      ADD_FAILURE() << file << " was written";
+    } catch (const Error& error) {
+      EXPECT_THAT(error.what(), HasSubstr("mesh 1 (\"sphere\") has vertex 3 = (")) << file;
+      EXPECT_THAT(error.what(), HasSubstr("beyond the single precision of mesh files")) << file;
+    }
+  }
+  EXPECT_TRUE(file_names(directory).empty());
+  std::filesystem::remove_all(directory);
+}
+
 TEST(MeshExport, UnknownExtensionIsAnErrorAndWritesNothing) {
   const auto directory = fresh_directory("bad_extension");
   try {

@@ -3,6 +3,7 @@
 
 #include "io/scene.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -292,6 +293,13 @@ TEST(SceneFile, EveryMalformedSceneOfTheCorpusNamesItsJsonPath) {
     for (size_t k = 1; k < fields.size(); ++k) {
       EXPECT_THAT(message, HasSubstr(fields[k])) << fields[0];
     }
+    // One line without control characters, whatever the file holds (hostile names included)
+    EXPECT_TRUE(std::none_of(message.begin(), message.end(),
+                             [](char c) {
+                               const auto u = static_cast<unsigned char>(c);
+                               return u < 0x20 || u == 0x7f;
+                             }))
+        << fields[0] << ": " << message;
   }
   EXPECT_GE(listed.size(), 30u);
   for (const auto& entry : std::filesystem::directory_iterator(directory)) {

@@ -126,14 +126,15 @@ const std::string kRow = "[[0, 0, 0], [0, 1, 0], [0, 2, 0]]";
 std::vector<MalformedCase> malformed_cases() {
   return {
       {"unterminated", "{\"type\": \"nurbs_curve\",",
-       "bad.json: invalid JSON at line 1, column 24"},
+       "bad.json: (document): expected valid JSON at line 1, column 24"},
       {"nan literal", kCurveHead + kKnots + R"("control_points": [[0, 0, 0], [NaN, 1, 0]]})",
-       "bad.json: invalid JSON at line 1, column"},
+       "bad.json: (document): expected valid JSON at line 1, column"},
       {"error on line 3", "{\n  \"type\": \"nurbs_curve\",\n  \"degree\": 2,,\n}",
-       "bad.json: invalid JSON at line 3, column"},
-      {"empty text", "", "bad.json: invalid JSON at line 1, column 1"},
+       "bad.json: (document): expected valid JSON at line 3, column"},
+      {"empty text", "", "bad.json: (document): expected valid JSON at line 1, column 1"},
       {"overflowing number", kCurveHead + R"("knots": [0, 0, 0, 1e999, 1, 1]})",
-       "bad.json: invalid JSON: number overflow"},
+       "bad.json: (document): expected valid JSON at line 1, column 57: number overflow parsing "
+       "'1e999'"},
       {"root is an array", "[1, 2]", "bad.json: <root>: expected a JSON object"},
       {"missing type", R"({"degree": 2})", "bad.json: type: missing key"},
       {"unknown type", R"({"type": "nurbs_volume"})",

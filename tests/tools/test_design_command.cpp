@@ -224,7 +224,24 @@ TEST(FitCommand, BadDataExitsWithAMessageNamingIt) {
   result = run_dnurbs("fit surface " + nan.string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_THAT(result.err, HasSubstr("line 2 of the point file '" + nan.string() +
-                                    "' has a non-finite coordinate (nan)"));
+                                    "': coordinate y is not finite"));
+
+  // A point file that is a link to another file (a secret one): the error describes the bad
+  // line and quotes none of it
+  const auto secret = directory / "secret";
+  write(secret, "root:*:20228:0:99999:7:::\nroot2 x y\n");
+  const auto link = directory / "link.xyz";
+  std::filesystem::create_symlink(secret, link);
+  result = run_dnurbs("fit superquadric " + link.string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.err, HasSubstr("line 1 of the point file '" + link.string() +
+                                    "' holds 1 field where three numbers x y z were expected"));
+  EXPECT_THAT(result.err, ::testing::Not(HasSubstr("root")));
+  write(secret, "1 2 3\nroot x y\n");
+  result = run_dnurbs("fit superquadric " + link.string());
+  EXPECT_THAT(result.err, HasSubstr("line 2 of the point file '" + link.string() +
+                                    "': coordinate x is not a number"));
+  EXPECT_THAT(result.err, ::testing::Not(HasSubstr("root")));
 
   const auto missing = directory / "missing.obj";
   result = run_dnurbs("fit superquadric " + missing.string());

@@ -107,7 +107,7 @@ TEST(EvalCommand, MalformedFilesExitOneNamingFileAndKey) {
   const auto directory = fresh_directory("malformed");
   const BadFile files[] = {
       {"syntax.json", "{\"type\": \"nurbs_curve\",\n  \"degree\": 2\n  \"knots\": []}",
-       "syntax.json: invalid JSON at line 3, column"},
+       "syntax.json: (document): expected valid JSON at line 3, column"},
       {"weight.json",
        R"({"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1],
            "control_points": [[0, 0, 0], [1, 0, 0]], "weights": [1, -2]})",
@@ -121,6 +121,11 @@ TEST(EvalCommand, MalformedFilesExitOneNamingFileAndKey) {
            "control_points": [[0, 0, 0], [1, 0, 0]]})",
        "count.json: control_points: expected 3 control points"},
       {"type.json", R"({"type": 7})", "type.json: type: expected \"nurbs_curve\""},
+      // Finite coordinates whose derivative overflows: an error, never "inf" in the JSON
+      {"overflow.json",
+       R"({"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1],
+           "control_points": [[-1e308, 0, 0], [1e308, 0, 0]]})",
+       "overflow.json: --at 0.5: the derivative of order 1 = (inf, 0, 0) is not finite"},
   };
   for (const auto& file : files) {
     SCOPED_TRACE(file.name);

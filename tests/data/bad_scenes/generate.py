@@ -28,6 +28,8 @@ def case(name, mutate, *expected, raw=None):
 def m(f):
     return f
 case("not_json", None, "(document)", "expected valid JSON", raw='{"models": [')
+case("number_overflow", None, "(document): expected valid JSON at line 2, column 19: number overflow parsing '1e999'",
+     raw='{"models": [],\n "run": {"steps": 1e999}}\n')
 case("top_level_array", None, "(top level)", "expected an object", raw='[1, 2]\n')
 def f(s): s["modles"] = []
 case("unknown_top_key", f, "modles: unknown key")
@@ -108,7 +110,24 @@ case("fractional_steps", f, "run.steps: expected an integer in 1..100000000")
 def f(s): del s["probes"][0]["at"]
 case("probe_without_parameter", f, "probes[0].at: missing key")
 def f(s): s["probes"][0]["name"] = "a,b"
-case("probe_name_with_comma", f, "probes[0].name: expected a non-empty name without commas")
+case("probe_name_with_comma", f, "probes[0].name: expected a name of 1 to 100 letters, digits", 'got string "a,b"')
+# Names become file names, CSV columns and names inside mesh files: plain names only
+def f(s): s["models"][0]["name"] = "../../x"
+case("model_name_is_a_path", f, "models[0].name: expected a name of 1 to 100 letters", 'got string "../../x"')
+def f(s): s["models"][0]["name"] = "/etc/x"
+case("model_name_is_an_absolute_path", f, "models[0].name: expected a name of", 'got string "/etc/x"')
+def f(s): s["models"][1]["name"] = "rod\nv nan nan nan\nf 1 2 99999"
+case("model_name_with_line_breaks", f, "models[1].name: expected a name of", 'got string "rod\\x0av nan nan nan\\x0af 1 2 99999"')
+def f(s): s["models"][0]["name"] = "sheet\u0000"
+case("model_name_with_nul", f, "models[0].name: expected a name of", 'got string "sheet\\x00"')
+def f(s): s["models"][0]["name"] = ".hidden"
+case("model_name_with_leading_dot", f, "models[0].name: expected a name of", "not starting with '.'")
+def f(s): s["models"][0]["name"] = "x" * 101
+case("model_name_too_long", f, "models[0].name: expected a name of 1 to 100")
+def f(s): s["output"] = {"name": "../out"}
+case("output_name_is_a_path", f, "output.name: expected a name of", 'got string "../out"')
+def f(s): s["probes"][0]["name"] = "\u001b[2Jcleared"
+case("probe_name_with_terminal_control", f, "probes[0].name: expected a name of", 'got string "\\x1b[2Jcleared"')
 def f(s): s["output"] = {"format": "fbx"}
 case("unknown_mesh_format", f, "output.format: expected one of obj, stl, ply, gltf, glb")
 def f(s): s["output"] = {"format": "stl", "preview": True}
