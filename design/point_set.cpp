@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace dnurbs {
 
@@ -24,6 +25,7 @@ void check_points(const Eigen::MatrixX3d& points, const char* what) {
 }
 
 Eigen::MatrixX3d load_points(const std::filesystem::path& path) {
+  check_input_file(path, "point file");
   std::ifstream file(path);
   if (!file) {
     throw make_error("cannot open the point file '", path.string(), "'");

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/atomic_write.h"
 #include "io/json_messages.h"
 
@@ -135,13 +136,7 @@ Checkpoint parse_checkpoint_json(const std::string& text, const std::string& sou
 }
 
 Checkpoint read_checkpoint_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw make_error(path.string(), ": cannot read the checkpoint file");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_checkpoint_json(text.str(), path.string());
+  return parse_checkpoint_json(read_input_file(path, "checkpoint file"), path.string());
 }
 
 void write_checkpoint_file(const std::filesystem::path& path, const Checkpoint& checkpoint) {

@@ -3,16 +3,22 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string_view>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/material.h>
 #include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
+#include <assimp/IOStream.hpp>
 
 #include "core/error.h"
 #include "io/atomic_write.h"
@@ -21,8 +27,82 @@
 namespace dnurbs {
 namespace {
 
-// An assimp file system that sends every file opened for writing to a temporary sibling and
-// remembers where it belongs, so that the export becomes visible only by the final renames.
+// A file written for assimp with every failure kept: a short fwrite (a full disk, a file size
+// limit), a failed seek, flush or close. Assimp's exporters do not look at the counts its
+// streams return, and its default stream ignores fflush and fclose, so a full disk gave a cut
+// file and success.
+class CheckedWriteStream : public Assimp::IOStream {
+ public:
+  // `failures` receives the first failure of this file when it is closed (by Close or by the
+  // destructor: assimp's exporters delete their streams themselves)
+  CheckedWriteStream(std::FILE* file, std::filesystem::path target,
+                     std::vector<std::string>* failures)
+      : file_(file), target_(std::move(target)), failures_(failures) {}
+  CheckedWriteStream(const CheckedWriteStream&) = delete;
+  CheckedWriteStream& operator=(const CheckedWriteStream&) = delete;
+  ~CheckedWriteStream() override { close(); }
+
+  size_t Read(void* /*buffer*/, size_t /*size*/, size_t /*count*/) override {
+    return 0;  // opened for writing only
+  }
+  size_t Write(const void* buffer, size_t size, size_t count) override {
+    const size_t written = file_ != nullptr ? std::fwrite(buffer, size, count, file_) : 0;
+    note(written == count);
+    return written;
+  }
+  aiReturn Seek(size_t offset, aiOrigin origin) override {
+    const int whence = origin == aiOrigin_SET   ? SEEK_SET
+                       : origin == aiOrigin_CUR ? SEEK_CUR
+                                                : SEEK_END;
+    const bool ok = file_ != nullptr && offset <= static_cast<size_t>(LONG_MAX) &&
+                    std::fseek(file_, static_cast<long>(offset), whence) == 0;
+    note(ok);
+    return ok ? aiReturn_SUCCESS : aiReturn_FAILURE;
+  }
+  size_t Tell() const override {
+    const long position = file_ != nullptr ? std::ftell(file_) : -1;
+    return position < 0 ? 0 : static_cast<size_t>(position);
+  }
+  size_t FileSize() const override {
+    if (file_ == nullptr) {
+      return 0;
+    }
+    const long here = std::ftell(file_);
+    std::fseek(file_, 0, SEEK_END);
+    const long end = std::ftell(file_);
+    std::fseek(file_, here, SEEK_SET);
+    return end < 0 ? 0 : static_cast<size_t>(end);
+  }
+  void Flush() override { note(file_ != nullptr && std::fflush(file_) == 0); }
+
+  // Flushes and closes (once), reporting the first failure of this file, if any.
+  void close() {
+    if (file_ != nullptr) {
+      note(std::fflush(file_) == 0 && std::ferror(file_) == 0);
+      note(std::fclose(file_) == 0);
+      file_ = nullptr;
+      if (!error_.empty()) {
+        failures_->push_back(error_);
+      }
+    }
+  }
+
+ private:
+  void note(bool ok) {
+    if (!ok && error_.empty()) {
+      error_ = target_.string() + ": " + (errno != 0 ? std::strerror(errno) : "write failed");
+    }
+  }
+
+  std::FILE* file_;
+  std::filesystem::path target_;
+  std::vector<std::string>* failures_;
+  std::string error_;  // "<target>: <reason>" of the first failure
+};
+
+// An assimp file system that sends every file opened for writing to a temporary sibling
+// (through CheckedWriteStream) and remembers where it belongs, so that the export becomes
+// visible only by the final renames, and only if every write succeeded.
 class TemporaryFileSystem : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
@@ -32,20 +112,34 @@ class TemporaryFileSystem : public Assimp::DefaultIOSystem {
     }
     const std::filesystem::path target = file;
     const std::filesystem::path temporary = temporary_sibling_path(target);
-    Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(temporary.string().c_str(), mode);
-    if (stream != nullptr) {
-      files_.emplace_back(temporary, target);
+    std::FILE* handle = std::fopen(temporary.c_str(), "wb");
+    if (handle == nullptr) {
+      failures_.push_back(target.string() + ": cannot create a temporary file in its directory: " +
+                          std::strerror(errno));
+      return nullptr;
     }
-    return stream;
+    files_.emplace_back(temporary, target);
+    return new CheckedWriteStream(handle, target, &failures_);
+  }
+
+  void Close(Assimp::IOStream* stream) override {
+    if (auto* checked = dynamic_cast<CheckedWriteStream*>(stream)) {
+      delete checked;  // closes and reports
+      return;
+    }
+    Assimp::DefaultIOSystem::Close(stream);
   }
 
   // (temporary, target) of every file written so far
   const std::vector<std::pair<std::filesystem::path, std::filesystem::path>>& files() const {
     return files_;
   }
+  // What failed, in order ("" when nothing did)
+  std::string failure() const { return failures_.empty() ? std::string() : failures_.front(); }
 
  private:
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;
+  std::vector<std::string> failures_;
 };
 
 void remove_temporaries(const TemporaryFileSystem& file_system) {
@@ -228,6 +322,11 @@ void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesyste
   auto* file_system = new TemporaryFileSystem;
   exporter.SetIOHandler(file_system);  // the exporter owns it from here on
   const aiReturn status = exporter.Export(scene.get(), assimp_format_id(format), path.string());
+  // A write, flush or close that failed (a full disk): nothing is published, the old files stay
+  if (const std::string failure = file_system->failure(); !failure.empty()) {
+    remove_temporaries(*file_system);
+    throw make_error(path.string(), ": the export failed (", failure, "); no file was changed");
+  }
   if (status != aiReturn_SUCCESS) {
     remove_temporaries(*file_system);
     const std::string reason = exporter.GetErrorString();

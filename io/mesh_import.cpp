@@ -7,6 +7,7 @@
 #include <assimp/Importer.hpp>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace dnurbs {
 namespace {
@@ -71,10 +72,7 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
 }  // namespace
 
 std::vector<TriangleMesh> import_meshes(const std::filesystem::path& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw make_error(path.string(), ": the mesh file does not exist");
-  }
+  check_input_file(path, "mesh file");
   Assimp::Importer importer;
   const aiScene* scene =
       importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/json_messages.h"
 #include "io/scene_reader.h"
 #include "io/scene_registry.h"
@@ -433,13 +434,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source,
 }
 
 Scene read_scene_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw make_error(path.string(), ": cannot read the scene file");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene_json(text.str(), path.string(), path.parent_path());
+  return parse_scene_json(read_input_file(path, "scene file"), path.string(), path.parent_path());
 }
 
 std::string scene_to_json(const Scene& scene) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/atomic_write.h"
 #include "io/json_messages.h"
 
@@ -346,19 +347,7 @@ Shape parse_shape_json(const std::string& text, const std::string& source) {
 }
 
 Shape read_shape_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::error_code error;
-    const bool exists = std::filesystem::exists(path, error);
-    throw make_error(path.string(),
-                     exists ? ": cannot read the shape file" : ": the shape file does not exist");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    throw make_error(path.string(), ": reading the shape file failed");
-  }
-  return parse_shape_json(text.str(), path.string());
+  return parse_shape_json(read_input_file(path, "shape file"), path.string());
 }
 
 std::string shape_to_json(const Shape& shape) {

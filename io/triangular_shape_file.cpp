@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/atomic_write.h"
 #include "io/json_messages.h"
 #include "nurbs/triangular_knot_clouds.h"
@@ -188,12 +189,7 @@ TriangularNurbsSurface parse_triangular_shape_json(const std::string& text,
 }
 
 TriangularNurbsSurface read_triangular_shape_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (!(in && text << in.rdbuf())) {
-    throw make_error(path.string(), ": cannot read the shape file");
-  }
-  return parse_triangular_shape_json(text.str(), path.string());
+  return parse_triangular_shape_json(read_input_file(path, "shape file"), path.string());
 }
 
 std::string triangular_shape_to_json(const TriangularNurbsSurface& surface) {
@@ -229,8 +225,13 @@ void write_triangular_shape_file(const std::filesystem::path& path,
 }
 
 bool is_triangular_shape_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const JsonValue root = JsonValue::parse(in, nullptr, false);
+  std::string text;
+  try {
+    text = read_input_file(path, "shape file");
+  } catch (const Error&) {
+    return false;  // read_shape_file then says why
+  }
+  const JsonValue root = JsonValue::parse(text, nullptr, false);
   return root.is_object() && root.contains("type") && root["type"] == kTriangularShapeType;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace dnurbs {
 
@@ -114,6 +115,7 @@ Image read_png(const std::string& path) {
 }
 
 Image read_pgm(const std::string& path) {
+  check_input_file(path, "PGM file");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw make_error("PGM file ", path, " cannot be opened");
@@ -168,6 +170,7 @@ Image read_pgm(const std::string& path) {
 }
 
 Image read_image(const std::string& path) {
+  check_input_file(path, "image file");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw make_error("image file ", path, " cannot be opened");

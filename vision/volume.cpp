@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "vision/image.h"
 
 namespace dnurbs {
@@ -188,6 +189,7 @@ std::string read_nrrd_payload(std::istream& header_stream,
   std::istream* in = &header_stream;
   if (const auto found = fields.find("data file"); found != fields.end()) {
     const auto data_path = std::filesystem::path(path).parent_path() / found->second;
+    check_input_file(data_path, "NRRD data file");
     detached.open(data_path, std::ios::binary);
     if (!detached) {
       throw make_error("NRRD file ", path, ": data file ", data_path.string(), " cannot be opened");
@@ -260,6 +262,7 @@ Volume read_volume_slices(const std::vector<std::string>& paths) {
 }
 
 Volume read_nrrd(const std::string& path) {
+  check_input_file(path, "NRRD file");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw make_error("NRRD file ", path, " cannot be opened");

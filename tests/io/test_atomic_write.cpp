@@ -3,14 +3,19 @@
 
 #include "io/atomic_write.h"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "core/error.h"
 
 namespace dnurbs {
 namespace {
@@ -40,6 +45,41 @@ TEST(AtomicWrite, WritesTheFileAndNoTemporary) {
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(directory)) {
     EXPECT_EQ(entry.path().filename(), "a.json");
+    ++files;
+  }
+  EXPECT_EQ(files, 1);
+  std::filesystem::remove_all(directory);
+}
+
+// A full disk, injected as a file size limit (RLIMIT_FSIZE, SIGXFSZ ignored) in a child: the
+// write fails with an Error naming the file and the previous file stays
+TEST(AtomicWrite, AWriteThatFailsKeepsThePreviousFile) {
+  const auto directory = fresh_directory();
+  const auto target = directory / "log.csv";
+  { std::ofstream(target) << "previous\n"; }
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      write_file_atomically(target, std::string(100000, 'x'));
+    } catch (const Error& error) {
+      ::_exit(std::string(error.what()).find(target.string() + ": writing failed") == 0 ? 0 : 2);
+    }
+    ::_exit(1);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: a message without the file";
+  std::ifstream in(target);
+  std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(contents, "previous\n");
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    EXPECT_EQ(entry.path().filename(), "log.csv");
     ++files;
   }
   EXPECT_EQ(files, 1);

@@ -1,10 +1,14 @@
 #include "io/mesh_export.h"
 
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -193,6 +197,44 @@ TEST(MeshExport, VertexBeyondSinglePrecisionIsAnErrorAndWritesNothing) {
     }
   }
   EXPECT_TRUE(file_names(directory).empty());
+  std::filesystem::remove_all(directory);
+}
+
+// A full disk, injected as a file size limit (RLIMIT_FSIZE: a write past it fails with EFBIG,
+// SIGXFSZ ignored) in a child process: every format's export fails with an Error naming the
+// file, the previous file stays as it was and no temporary is left.
+TEST(MeshExport, AWriteThatFailsKeepsTheOldFileAndExitsWithAnError) {
+  const auto directory = fresh_directory("write_fails");
+  for (const char* file : {"m.obj", "m.stl", "m.ply", "m.gltf", "m.glb"}) {
+    SCOPED_TRACE(file);
+    const std::filesystem::path target = directory / file;
+    { std::ofstream(target) << "the previous file\n"; }
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      ::signal(SIGXFSZ, SIG_IGN);
+      const rlimit limit{4096, 4096};
+      ::setrlimit(RLIMIT_FSIZE, &limit);
+      try {
+        export_meshes(sample_meshes(), target);
+      } catch (const Error& error) {
+        const std::string message = error.what();
+        const bool named = message.find(target.string() + ": the export failed (") == 0 &&
+                           message.find("no file was changed") != std::string::npos;
+        ::_exit(named ? 0 : 2);
+      }
+      ::_exit(1);  // the export claimed success
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: a message without the file";
+    std::ifstream in(target);
+    std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(contents, "the previous file\n");
+  }
+  const std::vector<std::string> left = file_names(directory);
+  EXPECT_EQ(left, (std::vector<std::string>{"m.glb", "m.gltf", "m.obj", "m.ply", "m.stl"}));
   std::filesystem::remove_all(directory);
 }
 

@@ -338,7 +338,7 @@ TEST(SceneFile, UnreadableFileIsNamed) {
     read_scene_file(kData / "no_such_scene.json");
     FAIL() << "no error";
   } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("no_such_scene.json: cannot read the scene file"));
+    EXPECT_THAT(error.what(), HasSubstr("no_such_scene.json: the scene file does not exist"));
   }
 }
 

@@ -93,7 +93,7 @@ TEST(TriangularShapeFile, OtherTypesAndUnreadableFilesAreNotTriangular) {
     read_triangular_shape_file(file);
     FAIL() << "no error";
   } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("cannot read the shape file"));
+    EXPECT_THAT(error.what(), HasSubstr("the shape file does not exist"));
   }
 }
 

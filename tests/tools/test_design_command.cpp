@@ -91,7 +91,7 @@ TEST(DesignCommand, BadSceneAndBadCommandLineAreReported) {
   const auto directory = fresh_directory("design_bad");
   auto missing = run_dnurbs("design " + (directory / "absent.json").string());
   EXPECT_EQ(missing.exit_code, 1);
-  EXPECT_THAT(missing.err, HasSubstr("absent.json: cannot read the scene file"));
+  EXPECT_THAT(missing.err, HasSubstr("absent.json: the scene file does not exist"));
   const auto bad_path = directory / "bad.json";
   std::string bad = kDesignScene;
   bad.replace(bad.find("\"slsqp\""), 7, "\"newton\"");

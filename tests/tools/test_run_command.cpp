@@ -244,7 +244,7 @@ TEST(RunCommand, MalformedScenesExitOneNamingFileAndJsonPath) {
   EXPECT_THAT(info.err, HasSubstr("integrator.dt: expected a number > 0"));
   const Result missing = run("run " + (kData / "no_such.json").string());
   EXPECT_EQ(missing.exit_code, 1);
-  EXPECT_THAT(missing.err, HasSubstr("no_such.json: cannot read the scene file"));
+  EXPECT_THAT(missing.err, HasSubstr("no_such.json: the scene file does not exist"));
   EXPECT_EQ(run("run --resolution 2").exit_code, 2);
   EXPECT_EQ(run("run a.json b.json").exit_code, 2);
   EXPECT_EQ(run("info --bogus").exit_code, 2);

@@ -180,7 +180,7 @@ TEST(TriangularDNurbsSurfaceScene, ShapeFilesAreReadRelativeToTheScene) {
     FAIL() << "no error";
   } catch (const Error& error) {
     EXPECT_THAT(error.what(), HasSubstr("scene.json: models[0].shape_file:"));
-    EXPECT_THAT(error.what(), HasSubstr("cannot read the shape file"));
+    EXPECT_THAT(error.what(), HasSubstr("the shape file does not exist"));
   }
 }
 
