@@ -14,7 +14,9 @@
 
 #include "core/fixed_coordinates.h"
 #include "core/kronecker.h"
+#include "core/memory_budget.h"
 #include "dynamics/core/model_tessellation.h"
+#include "io/json_messages.h"
 #include "io/scene_fit.h"
 
 namespace dnurbs {
@@ -67,6 +69,8 @@ void freeze_outside_scene_region(const Scene& scene, int index, Model& model) {
   }
 }
 
+// Mesh cells along one direction: resolution times the model's resolution_scale, at least
+// `minimum` (SceneSimulation::mesh has checked the memory of the mesh, so the count fits an int).
 int segments(int resolution, double scale, int minimum) {
   return std::max(minimum, static_cast<int>(std::lround(scale * resolution)));
 }
@@ -182,6 +186,22 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   integrator_ = Integrator(settings);
   hash_ = scene_state_hash(scene_);
   budget_ = EnergyBudget({scene_.integrator.energy_growth, scene_.integrator.max_energy});
+  // A state whose energy is not finite (coordinates so large that their squares overflow) is a
+  // fault of the scene: named by model and value, before the budget would only say "nan"
+  for (int i = 0; i < system_.model_count(); ++i) {
+    const Model& model = system_.model(i);
+    const Eigen::VectorXd q = system_.coordinates(i);
+    const double energy =
+        model.potential_energy(q) + model.kinetic_energy(q, system_.velocities(i));
+    if (!std::isfinite(energy)) {
+      fail(scene_, indexed("models", static_cast<size_t>(i)),
+           "the initial energy of model '" + scene_.models[static_cast<size_t>(i)].name +
+               "' is not finite (" + format_json_number(energy) +
+               "): its coordinates (largest magnitude " +
+               format_json_number(q.cwiseAbs().maxCoeff()) +
+               ") are too large for its energy to be computed; scale the shape down");
+    }
+  }
   budget_.start(system_);
 }
 
@@ -190,6 +210,10 @@ void SceneSimulation::add_models() {
     const SceneModel& spec = scene_.models[i];
     std::unique_ptr<Model> model;
     try {
+      const auto [bytes, key] = spec.spec->memory_estimate();
+      if (bytes > 0.0) {
+        check_memory_budget(bytes, "the model", "models[" + std::to_string(i) + "]." + key);
+      }
       model = build_model(spec);
     } catch (const Error& error) {
       fail(scene_, indexed("models", i), error.what());
@@ -273,7 +297,8 @@ void SceneSimulation::step() {
     if (check.not_finite) {
       text << " is not finite";
     } else if (check.above_ceiling) {
-      text << " exceeds integrator.max_energy = " << scene_.integrator.max_energy;
+      text << " exceeds integrator.max_energy = " << scene_.integrator.max_energy
+           << " times the energy moved, " << std::max(1.0, check.scale);
     } else {
       text << " exceeds its budget " << check.budget << " (initial energy "
            << budget_.initial_energy() << " plus the work of the forces) by more than "
@@ -365,8 +390,20 @@ TriangleMesh SceneSimulation::mesh(int i, int resolution) const {
   const Model& model = system_.model(i);
   const Eigen::VectorXd q = system_.coordinates(i);
   const Eigen::Vector2d& scale = spec.resolution_scale;
+  const std::string keys =
+      "output.resolution (or --resolution) or models[" + std::to_string(i) + "].resolution_scale";
+  const std::string what = scene_.source + ": the mesh of models[" + std::to_string(i) + "] (" +
+                           spec.name + ") at resolution " + std::to_string(resolution) +
+                           " x resolution_scale [" + format_json_number(scale.x()) + ", " +
+                           format_json_number(scale.y()) + "]";
   ModelTessellationSettings settings;
-  if (model.parametric_dimension() == 1) {
+  const bool curve = model.parametric_dimension() == 1;
+  // Cells in double first: a scale of 1e9 must not overflow an int into a tiny mesh
+  const double cells_u = std::round(scale.x() * resolution * (curve ? 4.0 : 1.0));
+  const double cells_v = curve ? 12.0 : std::round(scale.y() * resolution);
+  check_memory_budget(
+      triangle_mesh_bytes((cells_u + 1.0) * (cells_v + 1.0), 2.0 * cells_u * cells_v), what, keys);
+  if (curve) {
     // Curves: four times the surface resolution along the curve, a tube of 12 sides
     settings.segments_u = segments(4 * resolution, scale.x(), 3);
     settings.tube_radius = tube_radii_[static_cast<size_t>(i)];

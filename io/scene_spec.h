@@ -49,6 +49,10 @@ class SceneModelSpec {
   /// The library model (boundary conditions are applied by the caller). Throws Error with the
   /// library's message when it rejects a value, or when a fit is pending.
   virtual std::unique_ptr<Model> build() const = 0;
+  /// An estimate of the memory the built model and its step will need, checked before it is
+  /// built (core/memory_budget.h), with the key to lower: {bytes, key}. Default {0, ""}: models
+  /// whose size is bounded by their shape file or keys.
+  virtual std::pair<double, std::string> memory_estimate() const { return {0.0, ""}; }
   /// The model's fit when its initial shape is still to be fitted, else nullptr.
   virtual const SceneFit* pending_fit() const { return nullptr; }
   /// Fits the initial shape to `points` (#points by 3) with the fit's settings; the fit stays in

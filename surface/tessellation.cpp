@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 
 namespace dnurbs {
 namespace {
@@ -82,6 +83,11 @@ TriangleMesh tessellate_surface(const NurbsSurface& surface, int segments_u, int
                                 std::string name) {
   check_segments(surface.knots_u(), segments_u, "u");
   check_segments(surface.knots_v(), segments_v, "v");
+  const double vertices = (segments_u + 1.0) * (segments_v + 1.0);
+  check_memory_budget(
+      triangle_mesh_bytes(vertices, 2.0 * vertices),
+      "a mesh of " + std::to_string(segments_u) + " x " + std::to_string(segments_v) + " cells",
+      "the mesh resolution");
   const std::vector<double> us = uniform_parameters(surface.knots_u(), segments_u);
   const std::vector<double> vs = uniform_parameters(surface.knots_v(), segments_v);
   const int count_u = static_cast<int>(us.size());
@@ -125,6 +131,11 @@ TriangleMesh tessellate_curve_tube(const NurbsCurve& curve, int segments, double
     throw make_error("tessellation: tube sides ", sides, " is below 3");
   }
   check_segments(curve.knots(), segments, "curve");
+  const double vertices = (segments + 1.0) * sides;
+  check_memory_budget(
+      triangle_mesh_bytes(vertices, 2.0 * vertices),
+      "a tube of " + std::to_string(segments) + " x " + std::to_string(sides) + " cells",
+      "the mesh resolution");
   const std::vector<double> us = uniform_parameters(curve.knots(), segments);
   const int rings = static_cast<int>(us.size());
   const bool closed = curve.is_periodic();

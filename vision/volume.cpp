@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/memory_budget.h"
 #include "vision/image.h"
 
 namespace dnurbs {
@@ -166,6 +167,12 @@ Volume allocate_nrrd_volume(const std::map<std::string, std::string>& fields,
     throw make_error("NRRD file ", path, ": raw data holds ", raw_samples, " samples, expected ",
                      samples);
   }
+  // The volume in double and the decoded payload (a gzip-encoded payload of a few MB can
+  // declare 4096^3 samples): at most 16 bytes a sample
+  check_memory_budget(16.0 * static_cast<double>(samples),
+                      "NRRD file " + path + " (" + std::to_string(n[0]) + " x " +
+                          std::to_string(n[1]) + " x " + std::to_string(n[2]) + " samples)",
+                      "its sizes");
   Volume volume(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]));
   if (const auto found = fields.find("spacings"); found != fields.end()) {
     std::istringstream spacings(found->second);

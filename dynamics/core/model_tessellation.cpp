@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "surface/adaptive_tessellation.h"
 #include "surface/parametric_surface_tessellation.h"
 #include "surface/restricted_mesh.h"
@@ -63,6 +64,17 @@ double extent_radius(const Eigen::MatrixX3d& points) {
 TriangleMesh tessellate_model(const Model& model, ConstVectorRef q,
                               const ModelTessellationSettings& settings, std::string name) {
   check_coordinates(model, q);
+  // Every model's mesh has at most about (segments_u + 1) (segments_v + 1) vertices (a curve's
+  // tube: (segments + 1) sides), two triangles per cell: checked before anything is allocated
+  const bool curve = model.parametric_dimension() == 1;
+  const double columns = static_cast<double>(settings.segments_u) + 1.0;
+  const double rows = curve ? static_cast<double>(settings.tube_sides)
+                            : static_cast<double>(settings.segments_v) + 1.0;
+  check_memory_budget(triangle_mesh_bytes(columns * rows, 2.0 * columns * rows),
+                      "a mesh of " + std::to_string(settings.segments_u) + " x " +
+                          std::to_string(curve ? settings.tube_sides : settings.segments_v) +
+                          " cells",
+                      "the mesh resolution");
   return model.tessellate(q, settings, std::move(name));
 }
 

@@ -153,7 +153,7 @@ EnergyCheck EnergyBudget::after_step(const System& system, const Eigen::VectorXd
   check.budget = initial_energy_ + work_ + check.step_work;
   check.scale = moved_ + moved;
   check.not_finite = !std::isfinite(check.energy);
-  check.above_ceiling = check.energy > settings_.max_energy;
+  check.above_ceiling = check.energy > settings_.max_energy * std::max(1.0, check.scale);
   check.passed = !check.not_finite && !check.above_ceiling &&
                  check.energy - check.budget <= settings_.growth_tolerance * check.scale;
   if (check.passed) {
@@ -183,7 +183,8 @@ std::string divergence_setting(const IntegratorSettings& settings, const System&
          << " (its explicit damping and forces are stable only for small dt)";
     return text.str();
   }
-  const bool iterated = settings.newton_iterations > 0 || automatic_newton_applies(settings, system);
+  const bool iterated =
+      settings.newton_iterations > 0 || automatic_newton_applies(settings, system);
   for (int i = 0; i < system.model_count(); ++i) {
     if (!system.model(i).matrices_are_constant() && !iterated) {
       text << "model " << i << "'s state-dependent matrices in a linearly implicit step "

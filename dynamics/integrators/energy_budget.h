@@ -30,7 +30,9 @@ namespace dnurbs {
 struct EnergyBudgetSettings {
   /// The step fails when E > budget + growth_tolerance * scale (>= 0).
   double growth_tolerance = 1.0;
-  /// It fails too when E exceeds this absolute ceiling (> 0; infinity: none).
+  /// It fails too when E exceeds this ceiling times the run's energy scale E_0 + sum |work|
+  /// (or times 1 while that scale is below 1): a ratio, so that a stiff model that starts at a
+  /// large energy is not stopped while its energy falls (> 0; infinity: none).
   double max_energy = 1e300;
 };
 
@@ -57,7 +59,7 @@ struct EnergyCheck {
   double kinetic_energy = 0.0;    ///< (1/2) qd^T M qd after the step
   double potential_energy = 0.0;  ///< E_elastic after the step (energy = these + the springs')
   bool not_finite = false;        ///< the energy is not finite
-  bool above_ceiling = false;     ///< the energy exceeds max_energy
+  bool above_ceiling = false;     ///< the energy exceeds max_energy * max(1, scale)
 };
 
 /// The energy budget of a run of one System. Call start at the first state (and after any jump

@@ -1,8 +1,17 @@
 #include "io/models/terzopoulos_surface_scene.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "io/scene_model_keys.h"
 
 namespace dnurbs {
+
+std::pair<double, std::string> SceneTerzopoulosSurface::memory_estimate() const {
+  const double nodes = static_cast<double>(grid.nodes_u) * static_cast<double>(grid.nodes_v);
+  const double fill = std::max(1.0, std::log(nodes) / std::log(9e4));
+  return {8e3 * nodes * fill, "grid.nodes"};
+}
 
 std::unique_ptr<SceneModelSpec> SceneTerzopoulosSurface::clone() const {
   return std::make_unique<SceneTerzopoulosSurface>(*this);

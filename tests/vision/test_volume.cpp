@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -113,6 +114,21 @@ TEST(NrrdFiles, BadHeadersAreNamed) {
       std::string::npos);
   EXPECT_NE(message(base + "dimension: 3\nsizes: 1 1 1\nno colon here\n\n").find("no \": \""),
             std::string::npos);
+  // A compressed payload may be small and declare many samples (a gzip bomb): over 2^28 samples
+  // are refused by count, below that by the memory budget before anything is decoded (16 bytes
+  // a sample: 512^3 need 2147 MB, over a limit of 1 GB)
+  EXPECT_NE(message("NRRD0004\ntype: uchar\nencoding: gzip\ndimension: 3\n"
+                    "sizes: 4096 4096 4096\n\n",
+                    "x")
+                .find("68719476736 voxels exceed the limit"),
+            std::string::npos);
+  ::setenv("DNURBS_MEMORY_LIMIT", "1e9", 1);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\nencoding: gzip\ndimension: 3\n"
+                    "sizes: 512 512 512\n\n",
+                    "x")
+                .find("(512 x 512 x 512 samples) needs about 2147 MB, more than the 1000 MB"),
+            std::string::npos);
+  ::unsetenv("DNURBS_MEMORY_LIMIT");
 }
 
 TEST(VolumeSlices, StackOfPgmSlicesIsRead) {

@@ -124,6 +124,8 @@ def f(s): s["models"][0]["name"] = ".hidden"
 case("model_name_with_leading_dot", f, "models[0].name: expected a name of", "not starting with '.'")
 def f(s): s["models"][0]["name"] = "x" * 101
 case("model_name_too_long", f, "models[0].name: expected a name of 1 to 100")
+def f(s): s["models"][0]["shape"]["control_points"][1][1] = [1e308, 1e308, 1e308]
+case("energy_not_finite", f, "models[0]: the initial energy of model 'sheet' is not finite", "largest magnitude 1e+308")
 def f(s): s["output"] = {"name": "../out"}
 case("output_name_is_a_path", f, "output.name: expected a name of", 'got string "../out"')
 def f(s): s["probes"][0]["name"] = "\u001b[2Jcleared"

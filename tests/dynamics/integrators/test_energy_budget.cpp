@@ -83,6 +83,38 @@ TEST(EnergyBudget, HonestWorkIsNeverFlagged) {
   EXPECT_LE(budget.energy(), e0 + budget.work());  // dissipation only
 }
 
+TEST(EnergyBudget, TheCeilingIsARatioOfTheEnergyMoved) {
+  // A stiff sheet (tension 1e12) started far from rest, at an energy near 1e12: damped, its
+  // energy only falls. A ceiling of 1e3 is a ratio of the energy the run has moved, so the run
+  // is not stopped (an absolute ceiling of 1e3 would stop it at the first step); a jump of the
+  // state to 1e6 times that energy is.
+  DNurbsSurfaceMaterial material;
+  material.a10 = material.a01 = 1e12;
+  material.damping_density = 1e6;
+  DNurbsSurface sheet(test::flat_patch(3, 3, 5, 5), material);
+  sheet.fix_border();
+  System system(sheet);
+  Eigen::VectorXd q = system.coordinates();
+  q[3 * 10 + 2] += 1.0;  // an interior control point lifted by 1
+  system.set_state(q, Eigen::VectorXd::Zero(system.velocity_count()), 0.0);
+  Integrator integrator;
+  EnergyBudget budget({1.0, 1e3});
+  budget.start(system);
+  const double e0 = budget.energy();
+  EXPECT_GT(e0, 1e10);
+  for (int n = 0; n < 20; ++n) {
+    integrator.step(system, 0.01);
+    const EnergyCheck check = budget.after_step(system);
+    ASSERT_TRUE(check.passed) << "step " << n << ": energy " << check.energy;
+    EXPECT_LE(check.energy, e0 * (1.0 + 1e-12));
+  }
+  const Eigen::VectorXd v = Eigen::VectorXd::Constant(system.velocity_count(), 1e12);
+  system.set_state(system.coordinates(), v, system.time());
+  const EnergyCheck jump = budget.after_step(system);
+  EXPECT_FALSE(jump.passed);
+  EXPECT_TRUE(jump.above_ceiling);
+}
+
 TEST(EnergyBudget, StiffExplicitForceFailsEarlyWithAGoodLastStateAndIsNamed) {
   // An explicit spring force (spring_force: its stiffness not in the step matrix) of k = 200
   // pulling the damped sheet's centre toward a target rising to z = 0.5, implicit Euler at
