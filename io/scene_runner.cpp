@@ -24,7 +24,7 @@ std::filesystem::path frame_path(const std::filesystem::path& directory, const S
   name += number;
   name += '.';
   name += output.format;
-  return directory / "frames" / name;
+  return output_file_path(directory / "frames", name);
 }
 
 void create_output_directory(const std::filesystem::path& directory) {
@@ -53,7 +53,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
 
   SceneRunResult result;
   result.total_steps = scene.step_count();
-  result.log = directory / "log.csv";
+  result.log = output_file_path(directory, "log.csv");
   CsvLog log(simulation.log_columns());
   if (options.resume) {
     simulation.restore(read_checkpoint_file(*options.resume), options.resume->string());
@@ -73,21 +73,22 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
 
   const auto write_state = [&]() {
     log.write(result.log);
-    result.checkpoint = directory / "checkpoint.json";
+    result.checkpoint = output_file_path(directory, "checkpoint.json");
     write_checkpoint_file(result.checkpoint, simulation.checkpoint());
   };
   const auto write_final_mesh = [&]() {
     if (output.final_mesh) {
-      result.final_mesh = directory / (output.name + "." + output.format);
+      result.final_mesh = output_file_path(directory, output.name + "." + output.format);
       export_meshes(simulation.meshes(resolution), result.final_mesh);
     }
     if (output.shape_files) {
       for (int i = 0; i < simulation.system().model_count(); ++i) {
         if (std::optional<Shape> shape = simulation.shape(i)) {
           // A model name is any string: one that is not a plain file name becomes model<i>
-          const auto path = directory / (output_file_stem(scene.models[static_cast<size_t>(i)].name,
-                                                          "model" + std::to_string(i)) +
-                                         ".json");
+          const auto path = output_file_path(
+              directory, output_file_stem(scene.models[static_cast<size_t>(i)].name,
+                                          "model" + std::to_string(i)) +
+                             ".json");
           write_shape_file(path, *shape);
           result.shape_files.push_back(path);
         }

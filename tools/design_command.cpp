@@ -5,6 +5,7 @@
 
 #include "design/energy_minimization.h"
 #include "io/mesh_export.h"
+#include "io/output_path.h"
 #include "io/scene.h"
 #include "io/scene_simulation.h"
 #include "io/shape_file.h"
@@ -93,13 +94,15 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out)
   std::vector<std::filesystem::path> written;
   for (int i = 0; i < simulation.system().model_count(); ++i) {
     if (const std::optional<Shape> shape = simulation.shape(i)) {
-      const auto path =
-          directory / (simulation.scene().models[static_cast<size_t>(i)].name + ".json");
+      const auto path = output_file_path(
+          directory, output_file_stem(simulation.scene().models[static_cast<size_t>(i)].name,
+                                      "model" + std::to_string(i)) +
+                         ".json");
       write_shape_file(path, *shape);
       written.push_back(path);
     }
   }
-  const auto mesh_path = directory / mesh_name;
+  const auto mesh_path = output_file_path(directory, mesh_name);
   export_meshes(simulation.meshes(resolution), mesh_path);
   written.push_back(mesh_path);
 

@@ -12,6 +12,7 @@
 #include "design/superquadric_fitting.h"
 #include "io/atomic_write.h"
 #include "io/mesh_export.h"
+#include "io/output_path.h"
 #include "io/scene_fit.h"
 #include "io/shape_file.h"
 #include "surface/parametric_surface.h"
@@ -74,14 +75,14 @@ int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& ou
        << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
   if (output.directory) {
     std::filesystem::create_directories(*output.directory);
-    write_file_atomically(*output.directory / "superquadric.json", text.str());
+    write_file_atomically(output_file_path(*output.directory, "superquadric.json"), text.str());
     // The body-frame surface moved to the fitted pose x = c + R s.
     TriangleMesh mesh =
         tessellate_surface(parametric_surface(DeformableSuperquadricShape(fit.shape)),
                            output.resolution, 2 * output.resolution, "superquadric");
     mesh.vertices = (mesh.vertices * fit.rotation.transpose()).rowwise() + fit.centre.transpose();
     mesh.normals = mesh.normals * fit.rotation.transpose();
-    export_mesh(mesh, *output.directory / "superquadric.obj");
+    export_mesh(mesh, output_file_path(*output.directory, "superquadric.obj"));
   }
   out << text.str();
   return kExitOk;
@@ -104,9 +105,9 @@ int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, d
   if (output.directory) {
     const NurbsSurface surface = model.surface(fit.coordinates);
     std::filesystem::create_directories(*output.directory);
-    write_shape_file(*output.directory / "surface.json", Shape(surface));
+    write_shape_file(output_file_path(*output.directory, "surface.json"), Shape(surface));
     export_mesh(tessellate_surface(surface, output.resolution, output.resolution),
-                *output.directory / "surface.obj");
+                output_file_path(*output.directory, "surface.obj"));
   }
   out << "{\n  \"shape\": \"nurbs_surface\",\n  \"degree\": " << degree << ",\n  \"knots\": ";
   print_vector(out, Eigen::Map<const Eigen::VectorXd>(knots.knots().data(), knots.size()));
