@@ -1,6 +1,7 @@
 #include "core/input_file.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -31,6 +32,27 @@ void check_input_file(const std::filesystem::path& path, std::string_view what,
     throw make_error(path.string(), ": the ", what, " holds ", size,
                      " bytes, more than the limit of ", limit);
   }
+}
+
+std::string printable_excerpt(std::string_view text, std::size_t max_bytes) {
+  std::string result;
+  for (std::size_t i = 0; i < text.size() && i < max_bytes; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '"' || c == '\\') {
+      result += '\\';
+      result += static_cast<char>(c);
+    } else if (c >= 0x20 && c < 0x7f) {
+      result += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\x%02x", static_cast<unsigned>(c));
+      result += escaped;
+    }
+  }
+  if (text.size() > max_bytes) {
+    result += "...";
+  }
+  return result;
 }
 
 std::string read_input_file(const std::filesystem::path& path, std::string_view what,

@@ -4,6 +4,7 @@
 // are opened, so that a FIFO blocks nothing, a device such as /dev/zero is not read without end
 // and a folder gets a message rather than a failed parse.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -21,6 +22,11 @@ inline constexpr std::uintmax_t kInputFileLimit = std::uintmax_t{1} << 30;
 /// `what` names the kind of file ("scene file").
 void check_input_file(const std::filesystem::path& path, std::string_view what,
                       std::uintmax_t limit = kInputFileLimit);
+
+/// A short excerpt of text from an input file for a message: at most `max_bytes` bytes, '"' and
+/// '\\' escaped with a backslash, anything outside printable ASCII as \xNN, "..." appended when
+/// cut; so that a message can neither carry line breaks or terminal controls nor much of a file.
+std::string printable_excerpt(std::string_view text, std::size_t max_bytes = 40);
 
 /// check_input_file, then the whole file's bytes (at most `limit`, even if it grows meanwhile).
 /// Throws Error "<path>: cannot read the <what>: <reason>" if opening or reading fails.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace dnurbs {
 
@@ -22,26 +23,8 @@ std::string describe_json_value(const nlohmann::json& value) {
     case Json::value_t::boolean:
       return value.get<bool>() ? "true" : "false";
     case Json::value_t::string: {
-      // A short, printable excerpt: at most 40 bytes, '"', '\\' and anything outside printable
-      // ASCII escaped, so that a hostile string cannot put line breaks or terminal controls
-      // into a message.
-      const std::string text = value.get<std::string>();
-      std::string result = "string \"";
-      for (std::size_t i = 0; i < text.size() && i < 40; ++i) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c == '"' || c == '\\') {
-          result += '\\';
-          result += static_cast<char>(c);
-        } else if (c >= 0x20 && c < 0x7f) {
-          result += static_cast<char>(c);
-        } else {
-          char escaped[8];
-          std::snprintf(escaped, sizeof(escaped), "\\x%02x", static_cast<unsigned>(c));
-          result += escaped;
-        }
-      }
-      result += text.size() > 40 ? "\"..." : "\"";
-      return result;
+      // A short, printable, escaped excerpt (core/input_file.h)
+      return "string \"" + printable_excerpt(value.get<std::string>()) + "\"";
     }
     case Json::value_t::array: {
       std::string result = "an array of ";

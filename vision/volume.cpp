@@ -57,7 +57,8 @@ SampleType parse_sample_type(const std::string& type, const std::string& path) {
       {"double", {8, true, true}}};
   const auto found = sample_types.find(type);
   if (found == sample_types.end()) {
-    throw make_error("NRRD file ", path, ": type \"", type, "\" is not supported");
+    throw make_error("NRRD file ", path, ": type \"", printable_excerpt(type),
+                     "\" is not supported");
   }
   return found->second;
 }
@@ -115,8 +116,8 @@ std::map<std::string, std::string> read_nrrd_header(std::istream& in, const std:
   std::string line;
   std::getline(in, line);
   if (line.rfind("NRRD000", 0) != 0 || line.size() != 8 || line[7] < '1' || line[7] > '5') {
-    throw make_error("NRRD file ", path, ": magic \"", line.substr(0, 16),
-                     "\" is not NRRD0001..NRRD0005");
+    // Nothing of the file is quoted: it may be any file (a link to a secret one)
+    throw make_error("NRRD file ", path, ": the first line is not NRRD0001..NRRD0005");
   }
   std::map<std::string, std::string> fields;
   int count = 0;
@@ -129,7 +130,8 @@ std::map<std::string, std::string> read_nrrd_header(std::istream& in, const std:
     }
     const auto colon = line.find(": ");
     if (colon == std::string::npos) {
-      throw make_error("NRRD file ", path, ": header line \"", line, "\" has no \": \"");
+      throw make_error("NRRD file ", path, ": header line \"", printable_excerpt(line),
+                       "\" has no \": \"");
     }
     std::string value = line.substr(colon + 2);
     while (!value.empty() && (value.back() == '\r' || value.back() == ' ')) {
@@ -154,12 +156,14 @@ const std::string& required_field(const std::map<std::string, std::string>& fiel
 Volume allocate_nrrd_volume(const std::map<std::string, std::string>& fields,
                             const std::string& path, std::size_t raw_samples) {
   if (required_field(fields, "dimension", path) != "3") {
-    throw make_error("NRRD file ", path, ": dimension ", fields.at("dimension"), " is not 3");
+    throw make_error("NRRD file ", path, ": dimension ", printable_excerpt(fields.at("dimension")),
+                     " is not 3");
   }
   std::istringstream sizes(required_field(fields, "sizes", path));
   std::array<long long, 3> n{0, 0, 0};
   if (!(sizes >> n[0] >> n[1] >> n[2])) {
-    throw make_error("NRRD file ", path, ": sizes \"", fields.at("sizes"), "\" are not 3 integers");
+    throw make_error("NRRD file ", path, ": sizes \"", printable_excerpt(fields.at("sizes")),
+                     "\" are not 3 integers");
   }
   check_volume_size(n[0], n[1], n[2], "NRRD file " + path);
   const auto samples = static_cast<std::size_t>(n[0] * n[1] * n[2]);
@@ -179,7 +183,7 @@ Volume allocate_nrrd_volume(const std::map<std::string, std::string>& fields,
     for (int axis = 0; axis < 3; ++axis) {
       double h = 1.0;
       if (!(spacings >> h) || !(h > 0.0)) {
-        throw make_error("NRRD file ", path, ": spacings \"", found->second,
+        throw make_error("NRRD file ", path, ": spacings \"", printable_excerpt(found->second),
                          "\" are not 3 positive numbers");
       }
       volume.spacing[axis] = h;
@@ -209,7 +213,7 @@ std::string read_nrrd_payload(std::istream& header_stream,
     if (found != fields.end()) {
       std::istringstream text(found->second);
       if (!(text >> value)) {
-        throw make_error("NRRD file ", path, ": ", key, " \"", found->second,
+        throw make_error("NRRD file ", path, ": ", key, " \"", printable_excerpt(found->second),
                          "\" is not an integer");
       }
     }
@@ -295,7 +299,8 @@ Volume read_nrrd(const std::string& path) {
   if (encoding == "gzip" || encoding == "gz") {
     payload = gunzip(payload, bytes, path);
   } else if (encoding != "raw") {
-    throw make_error("NRRD file ", path, ": encoding \"", encoding, "\" is not supported");
+    throw make_error("NRRD file ", path, ": encoding \"", printable_excerpt(encoding),
+                     "\" is not supported");
   }
   if (payload.size() < bytes) {
     throw make_error("NRRD file ", path, ": raw data has ", payload.size(), " bytes, expected ",
@@ -305,7 +310,8 @@ Volume read_nrrd(const std::string& path) {
   if (type.bytes > 1) {
     const std::string& endian = required_field(fields, "endian", path);
     if (endian != "little" && endian != "big") {
-      throw make_error("NRRD file ", path, ": endian \"", endian, "\" is not little or big");
+      throw make_error("NRRD file ", path, ": endian \"", printable_excerpt(endian),
+                       "\" is not little or big");
     }
     big_endian = endian == "big";
   }

@@ -69,5 +69,15 @@ TEST(InputFile, RefusesWhatIsNotABoundedRegularFile) {
   std::filesystem::remove_all(directory);
 }
 
+TEST(InputFile, ExcerptsAreShortPrintableAndEscaped) {
+  EXPECT_EQ(printable_excerpt("plain text"), "plain text");
+  EXPECT_EQ(printable_excerpt("a\"b\\c"), "a\\\"b\\\\c");
+  EXPECT_EQ(printable_excerpt(std::string("line\nbreak\0nul\x1b[2J\xc3\xa9", 20)),
+            "line\\x0abreak\\x00nul\\x1b[2J\\xc3\\xa9");
+  EXPECT_EQ(printable_excerpt(std::string(50, 'x')), std::string(40, 'x') + "...");
+  EXPECT_EQ(printable_excerpt("abcdef", 3), "abc...");
+  EXPECT_EQ(printable_excerpt(""), "");
+}
+
 }  // namespace
 }  // namespace dnurbs

@@ -87,6 +87,11 @@ TEST(NrrdFiles, BadHeadersAreNamed) {
   };
   const std::string base = "NRRD0004\ntype: uchar\nencoding: raw\n";
   EXPECT_NE(message("P5\n").find("is not NRRD0001..NRRD0005"), std::string::npos);
+  // Any file may be named (a link to a secret one): its first line is not quoted, and header
+  // lines are quoted only as short escaped excerpts
+  EXPECT_EQ(message("root:*:20228:0:99999:7:::\n").find("root"), std::string::npos);
+  EXPECT_NE(message("NRRD0004\nbad\x1b[2J line\n\n").find("header line \"bad\\x1b[2J line\""),
+            std::string::npos);
   EXPECT_NE(message(base + "dimension: 2\nsizes: 2 2\n\n").find("dimension 2 is not 3"),
             std::string::npos);
   EXPECT_NE(message(base + "dimension: 3\n\n").find("\"sizes\" is missing"), std::string::npos);
