@@ -16,11 +16,29 @@
 #include "core/kronecker.h"
 #include "core/memory_budget.h"
 #include "dynamics/core/model_tessellation.h"
+#include "dynamics/core/sculpted_region.h"
 #include "io/json_messages.h"
 #include "io/scene_fit.h"
 
 namespace dnurbs {
 namespace {
+
+// A material parameter of model `index`: within its domain (a D-NURBS knot domain: the model
+// places a point there, which throws naming the value otherwise) and of its dimension (a curve
+// takes [u]: a second parameter is an error rather than silently ignored).
+void check_parameter(const System& system, const std::string& name, int index,
+                     const Eigen::Vector2d& at) {
+  const Model& model = system.model(index);
+  if (model.parametric_dimension() == 1 && at.y() != 0.0) {
+    throw make_error("model ", index, " (", name, ") is a curve: it takes one parameter [u], got [",
+                     at.x(), ", ", at.y(), "]");
+  }
+  const Eigen::Vector3d x = system.position(index, at);
+  if (!x.allFinite()) {
+    throw make_error("the point of model ", index, " (", name, ") at [", at.x(), ", ", at.y(),
+                     "] is not finite");
+  }
+}
 
 std::string indexed(const char* list, size_t i) {
   std::string path = list;
@@ -165,15 +183,34 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   add_models();
   add_forces();
   add_constraints();
-  // Probes: the model must be able to place the point
-  for (size_t i = 0; i < scene_.probes.size(); ++i) {
-    try {
-      const Eigen::Vector3d x = system_.position(scene_.probes[i].model, scene_.probes[i].at);
-      if (!x.allFinite()) {
-        throw make_error("the probe's position is not finite");
+  // Every material parameter of a force, constraint or probe is checked now, with its JSON path,
+  // rather than at the first step
+  const auto check = [&](const std::string& path, const auto& spec) {
+    for (int m = 0; m < system_.model_count(); ++m) {
+      SculptedRegion region;
+      spec.add_to_region(m, region);
+      for (const Eigen::Vector2d& at : region.parameters) {
+        try {
+          check_parameter(system_, scene_.models[static_cast<size_t>(m)].name, m, at);
+        } catch (const Error& error) {
+          fail(scene_, path, error.what());
+        }
       }
+    }
+  };
+  for (size_t i = 0; i < scene_.forces.size(); ++i) {
+    check(indexed("forces", i) + ".at", *scene_.forces[i].spec);
+  }
+  for (size_t i = 0; i < scene_.constraints.size(); ++i) {
+    check(indexed("constraints", i), *scene_.constraints[i].spec);
+  }
+  for (size_t i = 0; i < scene_.probes.size(); ++i) {
+    const SceneProbe& probe = scene_.probes[i];
+    try {
+      check_parameter(system_, scene_.models[static_cast<size_t>(probe.model)].name, probe.model,
+                      probe.at);
     } catch (const Error& error) {
-      fail(scene_, indexed("probes", i), error.what());
+      fail(scene_, indexed("probes", i) + ".at", error.what());
     }
   }
   IntegratorSettings settings;

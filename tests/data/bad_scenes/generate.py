@@ -126,6 +126,15 @@ def f(s): s["models"][0]["name"] = "x" * 101
 case("model_name_too_long", f, "models[0].name: expected a name of 1 to 100")
 def f(s): s["models"][0]["shape"]["control_points"][1][1] = [1e308, 1e308, 1e308]
 case("energy_not_finite", f, "models[0]: the initial energy of model 'sheet' is not finite", "largest magnitude 1e+308")
+# Material parameters are checked at load with their JSON path, not at the first step
+def f(s): s["forces"][0]["at"] = [1.5, 0.5]
+case("force_parameter_outside_domain", f, "forces[0].at: parameter 1.5 is outside the domain [0, 1]")
+def f(s): s["constraints"][0]["at"] = [0, 2]
+case("constraint_parameter_outside_domain", f, "constraints[0]: parameter 2 is outside the domain [0, 1]")
+def f(s): s["probes"][0]["at"] = [0.5, -0.1]
+case("probe_parameter_outside_domain", f, "probes[0].at: parameter -0.1 is outside the domain [0, 1]")
+def f(s): s["probes"].append({"name": "on_snake", "model": "snake", "at": [0.5, 0.5]})
+case("curve_parameter_with_v", f, "probes[1].at: model 1 (snake) is a curve: it takes one parameter [u], got [0.5, 0.5]")
 def f(s): s["output"] = {"name": "../out"}
 case("output_name_is_a_path", f, "output.name: expected a name of", 'got string "../out"')
 def f(s): s["probes"][0]["name"] = "\u001b[2Jcleared"
