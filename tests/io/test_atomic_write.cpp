@@ -3,11 +3,8 @@
 
 #include "io/atomic_write.h"
 
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -16,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "tests/common/child_process.h"
 
 namespace dnurbs {
 namespace {
@@ -26,17 +24,6 @@ std::filesystem::path fresh_directory() {
   std::filesystem::remove_all(directory);
   std::filesystem::create_directories(directory);
   return directory;
-}
-
-// The id of a process that has ended (a child, reaped)
-pid_t ended_process() {
-  const pid_t child = ::fork();
-  if (child == 0) {
-    ::_exit(0);
-  }
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
 }
 
 TEST(AtomicWrite, WritesTheFileAndNoTemporary) {
@@ -57,23 +44,15 @@ TEST(AtomicWrite, AWriteThatFailsKeepsThePreviousFile) {
   const auto directory = fresh_directory();
   const auto target = directory / "log.csv";
   { std::ofstream(target) << "previous\n"; }
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    ::signal(SIGXFSZ, SIG_IGN);
-    const rlimit limit{4096, 4096};
-    ::setrlimit(RLIMIT_FSIZE, &limit);
+  const int code = testing::exit_code_with_file_size_limit(4096, [&] {
     try {
       write_file_atomically(target, std::string(100000, 'x'));
     } catch (const Error& error) {
-      ::_exit(std::string(error.what()).find(target.string() + ": writing failed") == 0 ? 0 : 2);
+      return std::string(error.what()).find(target.string() + ": writing failed") == 0 ? 0 : 2;
     }
-    ::_exit(1);
-  }
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: a message without the file";
+    return 1;
+  });
+  EXPECT_EQ(code, 0) << "1: no error, 2: a message without the file";
   std::ifstream in(target);
   std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(contents, "previous\n");
@@ -88,7 +67,7 @@ TEST(AtomicWrite, AWriteThatFailsKeepsThePreviousFile) {
 
 TEST(AtomicWrite, StaleTemporariesOfEndedProcessesAreRemovedAndNothingElse) {
   const auto directory = fresh_directory();
-  const std::string dead = std::to_string(ended_process());
+  const std::string dead = std::to_string(testing::ended_process_id());
   const std::string alive = std::to_string(::getpid());
   const auto touch = [&](const std::string& name) { std::ofstream(directory / name) << "x"; };
   touch(".log.csv.tmp-" + dead + "-0");     // a killed run's: removed

@@ -1,11 +1,8 @@
 #include "io/mesh_export.h"
 
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -19,6 +16,7 @@
 #include "io/mesh_import.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
+#include "tests/common/child_process.h"
 
 namespace dnurbs {
 namespace {
@@ -209,26 +207,18 @@ TEST(MeshExport, AWriteThatFailsKeepsTheOldFileAndExitsWithAnError) {
     SCOPED_TRACE(file);
     const std::filesystem::path target = directory / file;
     { std::ofstream(target) << "the previous file\n"; }
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      ::signal(SIGXFSZ, SIG_IGN);
-      const rlimit limit{4096, 4096};
-      ::setrlimit(RLIMIT_FSIZE, &limit);
+    const int code = testing::exit_code_with_file_size_limit(4096, [&] {
       try {
         export_meshes(sample_meshes(), target);
       } catch (const Error& error) {
         const std::string message = error.what();
         const bool named = message.find(target.string() + ": the export failed (") == 0 &&
                            message.find("no file was changed") != std::string::npos;
-        ::_exit(named ? 0 : 2);
+        return named ? 0 : 2;
       }
-      ::_exit(1);  // the export claimed success
-    }
-    int status = 0;
-    ::waitpid(child, &status, 0);
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: a message without the file";
+      return 1;  // the export claimed success
+    });
+    EXPECT_EQ(code, 0) << "1: no error, 2: a message without the file";
     std::ifstream in(target);
     std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_EQ(contents, "the previous file\n");

@@ -3,9 +3,6 @@
 
 #include "io/scene_runner.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -15,9 +12,25 @@
 #include <nlohmann/json.hpp>
 
 #include "io/scene.h"
+#include "tests/common/child_process.h"
 
 namespace dnurbs {
 namespace {
+
+// A quadratic D-NURBS curve run for two steps with these output settings
+std::string curve_scene(const nlohmann::json& output) {
+  const nlohmann::json scene = {{"models",
+                                 {{{"name", "curve"},
+                                   {"type", "dnurbs_curve"},
+                                   {"shape",
+                                    {{"type", "nurbs_curve"},
+                                     {"degree", 2},
+                                     {"knots", {0, 0, 0, 1, 1, 1}},
+                                     {"control_points", {{0, 0, 0}, {1, 1, 0}, {2, 0, 0}}}}}}}},
+                                {"run", {{"steps", 2}}},
+                                {"output", output}};
+  return scene.dump();
+}
 
 // Scene files cannot name a model so (SceneFile.EveryMalformedSceneOfTheCorpusNamesItsJsonPath:
 // model_name_is_a_path.json); a Scene built in C++ can, and the runner still writes inside its
@@ -25,18 +38,8 @@ namespace {
 TEST(SceneRunner, AModelNameThatIsNoPlainFileNameWritesItsShapeAsModelIndex) {
   const std::filesystem::path root = std::filesystem::temp_directory_path() / "dnurbs_runner_names";
   std::filesystem::remove_all(root);
-  const nlohmann::json scene = {
-      {"models",
-       {{{"name", "curve"},
-         {"type", "dnurbs_curve"},
-         {"shape",
-          {{"type", "nurbs_curve"},
-           {"degree", 2},
-           {"knots", {0, 0, 0, 1, 1, 1}},
-           {"control_points", {{0, 0, 0}, {1, 1, 0}, {2, 0, 0}}}}}}}},
-      {"run", {{"steps", 2}}},
-      {"output", {{"shape_files", true}, {"mesh_every", 0}, {"checkpoint_every", 0}}}};
-  Scene parsed = parse_scene_json(scene.dump(), "<names>");
+  Scene parsed = parse_scene_json(
+      curve_scene({{"shape_files", true}, {"mesh_every", 0}, {"checkpoint_every", 0}}), "<names>");
   parsed.models[0].name = "../../escaped";
   SceneSimulation simulation(std::move(parsed));
   SceneRunOptions options;
@@ -55,26 +58,13 @@ TEST(SceneRunner, ARunRemovesTheTemporariesOfAKilledRun) {
   const std::filesystem::path root = std::filesystem::temp_directory_path() / "dnurbs_runner_stale";
   std::filesystem::remove_all(root);
   std::filesystem::create_directories(root / "frames");
-  const pid_t child = ::fork();
-  if (child == 0) {
-    ::_exit(0);
-  }
-  int status = 0;
-  ::waitpid(child, &status, 0);
+  const pid_t child = testing::ended_process_id();
   const std::string stale = ".log.csv.tmp-" + std::to_string(child) + "-4";
   const std::string stale_frame = ".run_0001.obj.tmp-" + std::to_string(child) + "-9";
   std::ofstream(root / stale) << "half";
   std::ofstream(root / "frames" / stale_frame) << "half";
-  const nlohmann::json scene = {{"models",
-                                 {{{"type", "dnurbs_curve"},
-                                   {"shape",
-                                    {{"type", "nurbs_curve"},
-                                     {"degree", 2},
-                                     {"knots", {0, 0, 0, 1, 1, 1}},
-                                     {"control_points", {{0, 0, 0}, {1, 1, 0}, {2, 0, 0}}}}}}}},
-                                {"run", {{"steps", 2}}},
-                                {"output", {{"mesh_every", 1}, {"checkpoint_every", 0}}}};
-  SceneSimulation simulation(parse_scene_json(scene.dump(), "<stale>"));
+  SceneSimulation simulation(
+      parse_scene_json(curve_scene({{"mesh_every", 1}, {"checkpoint_every", 0}}), "<stale>"));
   SceneRunOptions options;
   options.output_directory = root;
   run_scene(simulation, options);
