@@ -503,8 +503,8 @@ bool Integrator::assemble_state_dependent_blocks(const System& system, bool refa
     auto rhs = w.rhs.segment(block->velocity_offset, block->velocity_count);
     // The lean factorization serves blocks without spring terms, by CHOLMOD where the backend
     // setting picks the supernodal factorization
-    const bool supernodal = resolve_backend(cholesky, block->free.free_count()) ==
-                            CholeskyBackend::kCholmodSupernodal;
+    const bool supernodal =
+        resolve_backend(cholesky, block->free.free_count()) == CholeskyBackend::kCholmodSupernodal;
     const bool lean = settings_.lean_step && block->springs.term_count() == 0;
     block->fused = settings_.lean_step;
     block->reused = lean && !refactor && block->lean_active;
