@@ -3,7 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -52,7 +52,13 @@ std::uint64_t available_memory_bytes() {
 void check_memory_budget(double bytes, const std::string& what, const std::string& lower) {
   const double available = static_cast<double>(available_memory_bytes());
   if (!(bytes <= available)) {
-    const auto megabytes = [](double b) { return std::isfinite(b) ? std::llround(b / 1e6) : -1LL; };
+    // Whole MB; in exponent form past 1e12 MB (an absurd request, e.g. a resolution_scale of
+    // 1e300, whose estimate may even be infinite)
+    const auto megabytes = [](double b) {
+      char text[32];
+      std::snprintf(text, sizeof(text), b / 1e6 < 1e12 ? "%.0f" : "%.3g", b / 1e6);
+      return std::string(text);
+    };
     throw make_error(what, " needs about ", megabytes(bytes), " MB, more than the ",
                      megabytes(available), " MB of memory available; lower ", lower);
   }

@@ -42,7 +42,22 @@ TEST(MemoryBudget, TheLimitLowersWhatIsAvailableAndEstimatesAboveItAreRefused) {
                 "a mesh of 10 x 10 cells needs about 2500 MB, more than the 1000 MB of memory "
                 "available; lower the resolution");
     }
-    EXPECT_THROW(check_memory_budget(std::numeric_limits<double>::infinity(), "x", "y"), Error);
+    try {
+      check_memory_budget(3e30, "a mesh", "the resolution");
+      FAIL() << "no error";
+    } catch (const Error& error) {
+      EXPECT_EQ(std::string(error.what()),
+                "a mesh needs about 3e+24 MB, more than the 1000 MB of memory available; lower "
+                "the resolution");
+    }
+    try {
+      check_memory_budget(std::numeric_limits<double>::infinity(), "a mesh", "the resolution");
+      FAIL() << "no error";
+    } catch (const Error& error) {
+      EXPECT_EQ(std::string(error.what()),
+                "a mesh needs about inf MB, more than the 1000 MB of memory available; lower "
+                "the resolution");
+    }
     EXPECT_THROW(check_memory_budget(std::numeric_limits<double>::quiet_NaN(), "x", "y"), Error);
   }
   for (const char* ignored : {"abc", "-5", "0", "1e9x", ""}) {
