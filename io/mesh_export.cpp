@@ -102,7 +102,9 @@ class CheckedWriteStream : public Assimp::IOStream {
 
 // An assimp file system that sends every file opened for writing to a temporary sibling
 // (through CheckedWriteStream) and remembers where it belongs, so that the export becomes
-// visible only by the final renames, and only if every write succeeded.
+// visible only by the final renames, and only if every write succeeded. Streams are closed by
+// deleting them (DefaultIOSystem::Close, or the exporter itself): CheckedWriteStream's destructor
+// flushes, closes and reports, so no stream type needs telling apart here.
 class TemporaryFileSystem : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
@@ -120,14 +122,6 @@ class TemporaryFileSystem : public Assimp::DefaultIOSystem {
     }
     files_.emplace_back(temporary, target);
     return new CheckedWriteStream(handle, target, &failures_);
-  }
-
-  void Close(Assimp::IOStream* stream) override {
-    if (auto* checked = dynamic_cast<CheckedWriteStream*>(stream)) {
-      delete checked;  // closes and reports
-      return;
-    }
-    Assimp::DefaultIOSystem::Close(stream);
   }
 
   // (temporary, target) of every file written so far
