@@ -1,7 +1,6 @@
 #include "io/checkpoint.h"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -17,19 +16,13 @@ namespace {
 
 using Json = nlohmann::json;
 
-void append_number(std::string& text, double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  text += buffer;
-}
-
 void append_vector(std::string& text, const char* key, const Eigen::VectorXd& v) {
   text += "  \"";
   text += key;
   text += "\": [";
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     text += i == 0 ? "" : ", ";
-    append_number(text, v(i));
+    text += format_json_number(v(i));
   }
   text += "]";
 }
@@ -76,7 +69,7 @@ std::string checkpoint_to_json(const Checkpoint& checkpoint) {
   text += Json(checkpoint.scene_hash).dump();
   text += ",\n  \"step\": " + std::to_string(checkpoint.step);
   text += ",\n  \"time\": ";
-  append_number(text, checkpoint.time);
+  text += format_json_number(checkpoint.time);
   text += ",\n";
   append_vector(text, "q", checkpoint.coordinates);
   text += ",\n";

@@ -1,5 +1,6 @@
 #include "io/json_messages.h"
 
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <vector>
@@ -10,6 +11,9 @@
 namespace dnurbs {
 
 std::string format_json_number(double value) {
+  if (value == 0.0 && std::signbit(value)) {
+    return "-0.0";  // "-0" would read back as the integer 0
+  }
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.17g", value);
   return buffer;

@@ -9,7 +9,8 @@
 
 namespace dnurbs {
 
-/// A double with 17 significant digits ("%.17g").
+/// A double with 17 significant digits ("%.17g"), which JSON readers take back as the same
+/// double; negative zero is "-0.0" (JSON "-0" reads as the integer 0, losing the sign).
 std::string format_json_number(double value);
 /// A short description of a JSON value: `string "abc"`, `an array of 2 values`, `number 3`.
 std::string describe_json_value(const nlohmann::json& value);

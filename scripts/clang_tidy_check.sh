@@ -32,7 +32,7 @@ while IFS= read -r file; do
     status=1
   fi
 done < <(find "${existing[@]}" -name '*.cpp' -o -name '*.h' | sort)
-formatted=(tests bench examples)
+formatted=(tests bench examples fuzz)
 unformatted="$(find "${existing[@]}" "${formatted[@]}" -name '*.cpp' -o -name '*.h' | sort |
   xargs clang-format --dry-run 2>&1 | grep -E "warning:" | cut -d: -f1 | sort -u || true)"
 if [ -n "$unformatted" ]; then

@@ -16,6 +16,9 @@ packages=(
   zlib1g-dev             # vision/: gzip-encoded NRRD volumes for T-surfaces
   libgtest-dev libgmock-dev
   clang-tidy clang-format  # CI's style checks (scripts/clang_tidy_check.sh)
+  # clang with its sanitizer and libFuzzer runtimes: CI's sanitizer build and the fuzz targets
+  # (scripts/sanitize_check.sh, scripts/fuzz.sh)
+  clang libclang-rt-14-dev
   libbenchmark-dev       # bench/
   python3 python3-matplotlib python3-numpy  # PNG previews and bench plots
   # The Python module (python/, docs/python.md): pybind11 bindings built against the

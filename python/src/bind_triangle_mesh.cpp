@@ -81,8 +81,10 @@ void bind_triangle_mesh(py::module_& module) {
              "the extension (.obj, .stl, .ply, .gltf, .glb); atomic (temporary files renamed). "
              "Raises dnurbs.Error for an unknown extension, an empty list, an index out of "
              "range or an assimp failure.");
-  module.def("import_meshes", &import_meshes, py::arg("path"),
-             "Reads the meshes of a file through assimp: a list of TriangleMesh.");
+  module.def("import_meshes", &import_meshes, py::arg("path"), py::arg("cpu_seconds") = 0,
+             "Reads the meshes of a file through assimp: a list of TriangleMesh. assimp runs in "
+             "a child process with at most cpu_seconds of CPU time (0: 10 s plus 1 s per MB), so "
+             "that a malformed file that crashes it or makes it loop raises dnurbs.Error.");
 }
 
 }  // namespace dnurbs::python
