@@ -4,7 +4,6 @@
 // imported mesh must be usable by every consumer (grid_from_mesh, fitting): finite vertices,
 // normals and texture coordinates, triangle indices inside the vertex range.
 
-#include <unistd.h>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -41,8 +40,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const std::filesystem::path path =
-      std::filesystem::temp_directory_path() /
-      ("dnurbs_fuzz_mesh_" + std::to_string(getpid()) + kExtensions[data[0] % kExtensions.size()]);
+      dnurbs::fuzz::scratch_folder() /
+      (std::string("mesh") + kExtensions[data[0] % kExtensions.size()]);
   {
     std::ofstream file(path, std::ios::binary | std::ios::trunc);
     file.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));

@@ -7,17 +7,41 @@
 // command line. A value must survive its own writer: write(parse(text)) parses again and
 // writes the same text (round_trip_is_fixed_point), or the target aborts with both texts.
 
+#include <unistd.h>
 #include <cstddef>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 namespace dnurbs::fuzz {
 
 /// The fuzzer's bytes as text (any bytes, NUL included: the readers must cope).
 inline std::string input_text(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};
+}
+
+/// An empty folder of the temporary directory, made once per process and removed when it
+/// ends: relative file names in a fuzzed scene resolve against it, so a shape_file or
+/// fit.points key reaches the input-file checks (missing file, size, type) without reading the
+/// fuzzer's surroundings; the mesh target writes its input there.
+inline const std::filesystem::path& scratch_folder() {
+  struct Folder {
+    std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                 ("dnurbs_fuzz_" + std::to_string(static_cast<long>(getpid())));
+    Folder() { std::filesystem::create_directories(path); }
+    Folder(const Folder&) = delete;
+    Folder& operator=(const Folder&) = delete;
+    ~Folder() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
 }
 
 /// Aborts (a libFuzzer crash, the input saved) with a message on stderr.
