@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/version.h"
 #include "tools/command_line.h"
 #include "tools/design_command.h"
 #include "tools/eval_command.h"
@@ -30,7 +31,7 @@ commands:
   design SCENE.json [--out DIR]    energy-minimizing static shape under forces and constraints
   serve [SCENE.json] [--port N]    sculpt a scene in the browser (http://127.0.0.1:N/)
 
-Run `dnurbs COMMAND --help` for a command's options.
+Run `dnurbs COMMAND --help` for a command's options; `dnurbs --version` prints the version.
 exit codes: 0 ok, 1 bad input or failed processing, 2 bad command line
 )";
 
@@ -46,6 +47,10 @@ int main(int argc, char** argv) {
   const std::string& command = arguments.front();
   if (command == "-h" || command == "--help" || command == "help") {
     std::cout << kHelp;
+    return kExitOk;
+  }
+  if (command == "--version" || command == "version") {
+    std::cout << "dnurbs " << dnurbs::kVersion << "\n";
     return kExitOk;
   }
   const std::vector<std::string> rest(arguments.begin() + 1, arguments.end());

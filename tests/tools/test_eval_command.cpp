@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include "tests/tools/run_dnurbs.h"
 
+#include "core/version.h"
 #include "io/mesh_import.h"
 #include "io/shape_file.h"
 
@@ -172,6 +173,17 @@ TEST(DnurbsCommand, HelpForProgramAndEachSubcommandExitsZero) {
     EXPECT_EQ(sub.exit_code, 0) << command;
     EXPECT_THAT(sub.out, HasSubstr("usage: dnurbs " + command)) << command;
   }
+}
+
+TEST(DnurbsCommand, VersionPrintsTheProjectVersion) {
+  for (const std::string option : {"--version", "version"}) {
+    const Result version = run(option);
+    EXPECT_EQ(version.exit_code, 0) << option;
+    EXPECT_EQ(version.out, std::string("dnurbs ") + kVersion + "\n") << option;
+  }
+  EXPECT_EQ(std::to_string(kVersionMajor) + "." + std::to_string(kVersionMinor) + "." +
+                std::to_string(kVersionPatch),
+            kVersion);
 }
 
 TEST(RunCommand, DefaultDemoWritesObjAndPng) {
