@@ -21,6 +21,14 @@ Force point_force(const Eigen::Vector2d& u, const Eigen::Vector3d& force) {
   return point_force(u, [force](double) { return force; });
 }
 
+Force point_force(double u, VectorOfTime force) {
+  return point_force(Eigen::Vector2d(u, 0.0), std::move(force));
+}
+
+Force point_force(double u, const Eigen::Vector3d& force) {
+  return point_force(Eigen::Vector2d(u, 0.0), force);
+}
+
 Force spring_force(const Eigen::Vector2d& u, VectorOfTime target, double stiffness) {
   if (!(stiffness >= 0.0) || !std::isfinite(stiffness)) {
     throw make_error("spring stiffness ", stiffness, " is not a non-negative finite number");
@@ -35,6 +43,10 @@ Force spring_force(const Eigen::Vector2d& u, VectorOfTime target, double stiffne
   };
 }
 
+Force spring_force(double u, VectorOfTime target, double stiffness) {
+  return spring_force(Eigen::Vector2d(u, 0.0), std::move(target), stiffness);
+}
+
 Force control_point_force(std::vector<int> control_points, VectorOfTime force) {
   if (!force) {
     throw make_error("control point force has no force function");
@@ -47,6 +59,10 @@ Force control_point_force(std::vector<int> control_points, VectorOfTime force) {
       generalized.segment<3>(model.control_point_offset(i)) += f;
     }
   };
+}
+
+Force control_point_force(std::vector<int> control_points, const Eigen::Vector3d& force) {
+  return control_point_force(std::move(control_points), [force](double) { return force; });
 }
 
 Force coordinate_force(std::vector<int> coordinates, ScalarOfTime value) {

@@ -19,6 +19,9 @@ namespace dnurbs {
 /// The force f(t) acting at the material point u: L(u)^T f(t).
 Force point_force(const Eigen::Vector2d& u, VectorOfTime force);
 Force point_force(const Eigen::Vector2d& u, const Eigen::Vector3d& force);
+/// On a curve: the material point is the parameter u alone (the same force as at (u, 0)).
+Force point_force(double u, VectorOfTime force);
+Force point_force(double u, const Eigen::Vector3d& force);
 
 /// An explicit spring of stiffness k from the material point u to a target that moves in time:
 /// L(u)^T k (target(t) - x(u)), evaluated at the state like any force, its stiffness not in the
@@ -26,10 +29,14 @@ Force point_force(const Eigen::Vector2d& u, const Eigen::Vector3d& force);
 /// System::add_spring(model, mouse_spring(...)), which is implicit. Throws Error if k is negative
 /// or not finite.
 Force spring_force(const Eigen::Vector2d& u, VectorOfTime target, double stiffness);
+/// On a curve: spring_force at the parameter u alone (as at (u, 0)).
+Force spring_force(double u, VectorOfTime target, double stiffness);
 
 /// The force f(t) added directly to the position coordinates of each listed control point
 /// (Model::control_point_offset; indices are checked when the force is first applied).
 Force control_point_force(std::vector<int> control_points, VectorOfTime force);
+/// The same with a constant force f.
+Force control_point_force(std::vector<int> control_points, const Eigen::Vector3d& force);
 
 /// A generalized force value(t) added directly to each listed velocity-space coordinate (e.g.
 /// a D-NURBS weight, DNurbsModel::weight_offset).

@@ -30,6 +30,10 @@ Spring mouse_spring(const Eigen::Vector2d& u, VectorOfTime target, double stiffn
   };
 }
 
+Spring mouse_spring(double u, VectorOfTime target, double stiffness) {
+  return mouse_spring(Eigen::Vector2d(u, 0.0), std::move(target), stiffness);
+}
+
 Spring dragged_spring(ParameterOfTime u, VectorOfTime target, double stiffness) {
   check_stiffness(stiffness);
   if (!u || !target) {

@@ -37,6 +37,8 @@ using Spring = std::function<SpringState(double time)>;
 /// A spring of stiffness k at the fixed material point u toward a target that moves in time.
 /// Throws Error if k is negative or not finite, u not finite or target empty.
 Spring mouse_spring(const Eigen::Vector2d& u, VectorOfTime target, double stiffness);
+/// On a curve: the material point is the parameter u alone (as (u, 0)).
+Spring mouse_spring(double u, VectorOfTime target, double stiffness);
 
 /// A drag: a spring whose material point and target both move in time. Throws Error as
 /// mouse_spring for k and for empty functions.

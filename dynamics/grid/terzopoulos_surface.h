@@ -141,8 +141,9 @@ class TerzopoulosSurface : public Model {
                           std::string name) const override;
   /// Node blocks of 3: the semi-implicit step solves one node matrix for x, y and z.
   int semi_implicit_block_size() const override { return 3; }
-  /// Seed 000's matrices from the current tensors: M = mu h^2 I, D = gamma h^2 I and
-  /// K = linearized_stiffness(q) (nodes by nodes when `scalar`, else (x) I_3).
+  /// The semi-implicit matrices of Wu & de Melo (the grid Terzopoulos surface) from the current
+  /// tensors: M = mu h^2 I, D = gamma h^2 I and K = linearized_stiffness(q) (nodes by nodes when
+  /// `scalar`, else (x) I_3).
   void semi_implicit_matrices(ConstVectorRef q, bool scalar,
                               ModelMatrices& matrices) const override;
 

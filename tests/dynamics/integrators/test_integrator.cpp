@@ -135,8 +135,8 @@ TEST(IntegratorOrder, NewmarkIsSecondOrder) {
   EXPECT_NEAR(observed_order(mode, IntegratorScheme::kNewmark), 2.0, 0.05);
 }
 
-// Seed 001 eq 1.13 treats the inertia by central differences but the stiffness at t + dt and
-// the force at t: K q(t+dt) - K q(t) = O(dt) is a first-order truncation error, so the scheme
+// Terzopoulos 2003 eq 1.13 treats the inertia by central differences but the stiffness at t + dt
+// and the force at t: K q(t+dt) - K q(t) = O(dt) is a first-order truncation error, so the scheme
 // is first order (and numerically dissipative), not second order like the explicit central
 // difference method.
 TEST(IntegratorOrder, SeedCentralSchemeIsFirstOrderBecauseStiffnessIsImplicit) {
