@@ -153,8 +153,13 @@ void Triangulation::build_bins() {
       (vertices_.colwise().maxCoeff().transpose() - box_min_).cwiseMax(1e-300);
   const double per_side = std::sqrt(static_cast<double>(triangle_count()));
   const double aspect = std::sqrt(extent.x() / extent.y());
-  bins_x_ = std::clamp(static_cast<int>(std::ceil(per_side * aspect)), 1, 1024);
-  bins_y_ = std::clamp(static_cast<int>(std::ceil(per_side / aspect)), 1, 1024);
+  // Clamped in double before the conversion: a domain 1e44 times longer than wide (a fuzzed
+  // shape file) gives an aspect far beyond int, and NaN (an infinite extent) gives one bin
+  const auto bin_count = [](double x) {
+    return x >= 1024.0 ? 1024 : (x >= 1.0 ? static_cast<int>(x) : 1);
+  };
+  bins_x_ = bin_count(std::ceil(per_side * aspect));
+  bins_y_ = bin_count(std::ceil(per_side / aspect));
   bin_size_ = extent.cwiseQuotient(Eigen::Vector2d(bins_x_, bins_y_));
   std::vector<std::vector<int>> bins(static_cast<size_t>(bins_x_ * bins_y_));
   for (int t = 0; t < triangle_count(); ++t) {

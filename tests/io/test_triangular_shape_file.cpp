@@ -80,6 +80,22 @@ TEST(TriangularShapeFile, KnotCloudsAndWeightsAreOptional) {
   EXPECT_THAT(written, HasSubstr("knot_clouds"));
 }
 
+// Found by fuzz/fuzz_shape_reader.cpp: a vertex 1e43 away from the others made the point
+// location grid's bin count a double beyond int, converted anyway (undefined behaviour, caught by
+// the sanitized run of this test). Now the bin counts are clamped and the file gets its Error.
+TEST(TriangularShapeFile, FarAwayVertexGivesAnErrorNotUndefinedBehaviour) {
+  try {
+    parse_triangular_shape_json(
+        R"({"type": "triangular_nurbs", "degree": 1,
+            "vertices": [[5, 0], [1, 2e43], [1, 5], [0, 1]],
+            "triangles": [[3, 0, 2]], "control_points": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]})",
+        "far.json");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("far.json: triangles:"));
+  }
+}
+
 TEST(TriangularShapeFile, OtherTypesAndUnreadableFilesAreNotTriangular) {
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / "dnurbs_test_not_triangular.json";
