@@ -42,11 +42,6 @@ function(dnurbs_add_test_folder folder)
   string(REPLACE "/" "_" name "${folder}")
   string(REGEX REPLACE "/.*" "" layer "${folder}")
   add_executable(test_${name} ${sources})
-  # The tests' own code (set-up and checks) at -O1 in Release builds: the library under test
-  # keeps -O3, and the suite, most of what CI compiles, builds about a third faster (measured on
-  # tests/io/test_scene.cpp: 16.2 s at -O3, 11.7 s at -O1). Without -ffast-math the floating-point
-  # results do not depend on the level.
-  target_compile_options(test_${name} PRIVATE $<$<CONFIG:Release>:-O1>)
   if(TARGET dnurbs::${layer})
     set(library dnurbs::${layer})
   else()
