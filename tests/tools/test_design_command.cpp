@@ -253,7 +253,9 @@ TEST(FitCommand, BadDataExitsWithAMessageNamingIt) {
   result = run_dnurbs("fit superquadric " + garbage.string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_FALSE(result.signalled);
-  EXPECT_THAT(result.err, HasSubstr(garbage.string() + ": the mesh vertices are empty"));
+  // assimp reads it as a scene without meshes, which its data-structure check refuses
+  EXPECT_THAT(result.err, HasSubstr(garbage.string() +
+                                    ": assimp cannot read the mesh file: Validation failed"));
 }
 
 }  // namespace
