@@ -1,7 +1,12 @@
 #!/usr/bin/env bash
-# Configures and builds dnurbs in Release into build/ (warnings are errors).
+# Configures and builds dnurbs in Release into build/ (warnings are errors), with Ninja when it is
+# installed and build/ is new (a build/ configured earlier keeps its generator).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DDNURBS_WARNINGS_AS_ERRORS=ON \
+generator=()
+if command -v ninja >/dev/null && [ ! -f "$root/build/CMakeCache.txt" ]; then
+  generator=(-G Ninja)
+fi
+cmake -S "$root" -B "$root/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DDNURBS_WARNINGS_AS_ERRORS=ON \
       -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "$@" >/dev/null
 cmake --build "$root/build" --parallel "$(nproc)"

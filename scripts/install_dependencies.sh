@@ -5,6 +5,8 @@ set -euo pipefail
 
 packages=(
   build-essential cmake git pkg-config
+  ninja-build            # the build tool of scripts/build.sh (less overhead than make on a
+                         # full build, and one scheduler across all targets)
   libeigen3-dev          # linear algebra (dense and sparse)
   libnlopt-cxx-dev       # optimization (design and fitting)
   libassimp-dev          # mesh export and import

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "tests/core/allocation_counter.h"
+#include "tests/common/allocation_counter.h"
 #include "tests/core/core_test_helpers.h"
 
 namespace dnurbs {

@@ -1,7 +1,6 @@
 // The D-NURBS hot path (points, derivatives and Jacobians at quadrature points) must not touch
-// the heap. A counting global operator new checks it.
-#include <atomic>
-#include <cstdlib>
+// the heap. The counting global operator new of tests/common/allocation_counter.h checks it.
+#include <cmath>
 #include <new>
 
 #include <gtest/gtest.h>
@@ -9,33 +8,17 @@
 #include "nurbs/jacobian.h"
 #include "nurbs/span_cached_surface_evaluator.h"
 #include "sample_shapes.h"
-
-namespace {
-std::atomic<long> allocation_count{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  allocation_count.fetch_add(1, std::memory_order_relaxed);
-  if (void* pointer = std::malloc(size == 0 ? 1 : size)) {
-    return pointer;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* pointer) noexcept {
-  std::free(pointer);
-}
-void operator delete(void* pointer, std::size_t) noexcept {
-  std::free(pointer);
-}
+#include "tests/common/allocation_counter.h"
 
 namespace dnurbs {
 namespace {
 
 TEST(Evaluation, PointsDerivativesAndJacobiansDoNotAllocate) {
   // The counter sees allocations (so a zero below means something).
-  const long control_start = allocation_count.load();
+  testing::count_allocations = true;
+  const long control_start = testing::allocations.load();
   ::operator delete(::operator new(16));  // a direct call, which the compiler may not elide
-  ASSERT_EQ(allocation_count.load() - control_start, 1);
+  ASSERT_EQ(testing::allocations.load() - control_start, 1);
 
   const NurbsCurve curve = testing::random_rational_curve(3, 61);
   const NurbsSurface surface = testing::random_rational_surface(3, 3, 62, false, true);
@@ -46,7 +29,7 @@ TEST(Evaluation, PointsDerivativesAndJacobiansDoNotAllocate) {
   const SpanCachedSurfaceEvaluator span_cached(surface);
   SurfaceDerivatives span_cached_derivatives;
   double checksum = 0.0;
-  const long before = allocation_count.load();
+  const long before = testing::allocations.load();
   for (int i = 0; i < 1000; ++i) {
     const double u = (i + 0.5) / 1000.0;
     curve_jacobian(curve, u, 2, WeightMode::kFree, curve_result);
@@ -59,7 +42,9 @@ TEST(Evaluation, PointsDerivativesAndJacobiansDoNotAllocate) {
                 surface_derivatives(1, 1).z() + span_cached_derivatives(0, 2).x() +
                 span_cached.point(u, u).z();
   }
-  EXPECT_EQ(allocation_count.load() - before, 0);
+  const long during = testing::allocations.load() - before;
+  testing::count_allocations = false;
+  EXPECT_EQ(during, 0);
   EXPECT_TRUE(std::isfinite(checksum));
 }
 

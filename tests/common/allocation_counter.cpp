@@ -1,6 +1,6 @@
-// The replacement global operator new behind tests/core/allocation_counter.h. In a file of its
+// The replacement global operator new behind tests/common/allocation_counter.h. In a file of its
 // own so that no caller inlines it (g++ 12 then warns about malloc/free pairs it cannot match).
-#include "tests/core/allocation_counter.h"
+#include "tests/common/allocation_counter.h"
 
 #include <cstdlib>
 #include <new>
