@@ -11,17 +11,14 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "tests/common/error_message.h"
 
 namespace dnurbs {
 namespace {
 
 std::string error_of(const std::function<std::string()>& work, int cpu_seconds = 5) {
-  try {
-    call_in_child_process(work, "the test's work", cpu_seconds);
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no error";
+  return testing::error_message(
+      [&] { call_in_child_process(work, "the test's work", cpu_seconds); });
 }
 
 TEST(ChildProcessCall, ReturnsTheChildsBytesIncludingNulsAndMoreThanAPipeHolds) {
@@ -56,7 +53,7 @@ TEST(ChildProcessCall, ACrashInTheChildIsAnErrorNamingTheSignal) {
             }),
             "the test's work crashed (signal 11, Segmentation fault)");
   EXPECT_THAT(error_of([]() -> std::string { std::abort(); }),
-              testing::StartsWith("the test's work crashed (signal 6, "));
+              ::testing::StartsWith("the test's work crashed (signal 6, "));
 }
 
 TEST(ChildProcessCall, AnEarlyExitIsAnErrorWithItsStatus) {

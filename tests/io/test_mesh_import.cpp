@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "tests/common/error_message.h"
 
 namespace dnurbs {
 namespace {
@@ -21,12 +22,7 @@ std::filesystem::path write_obj(const std::string& name, const std::string& text
 }
 
 std::string import_error(const std::filesystem::path& path) {
-  try {
-    import_meshes(path);
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no error";
+  return testing::error_message([&] { import_meshes(path); });
 }
 
 TEST(MeshImport, ObjTriangleComesBackWithItsVerticesAndFace) {
@@ -45,8 +41,8 @@ TEST(MeshImport, NonFiniteVertexIsRefusedNamingTheFileAndVertex) {
   const auto path =
       write_obj("dnurbs_import_nan.obj", "o tri\nv 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
   const std::string message = import_error(path);
-  EXPECT_THAT(message, testing::HasSubstr(path.string()));
-  EXPECT_THAT(message, testing::HasSubstr("vertex 1 has a non-finite position"));
+  EXPECT_THAT(message, ::testing::HasSubstr(path.string()));
+  EXPECT_THAT(message, ::testing::HasSubstr("vertex 1 has a non-finite position"));
   std::filesystem::remove(path);
 }
 
@@ -54,8 +50,8 @@ TEST(MeshImport, FaceIndexPastTheVerticesIsRefused) {
   const auto path =
       write_obj("dnurbs_import_index.obj", "o tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999\n");
   const std::string message = import_error(path);
-  EXPECT_THAT(message, testing::HasSubstr(path.string()));
-  EXPECT_THAT(message, testing::HasSubstr("assimp cannot read the mesh file"));
+  EXPECT_THAT(message, ::testing::HasSubstr(path.string()));
+  EXPECT_THAT(message, ::testing::HasSubstr("assimp cannot read the mesh file"));
   std::filesystem::remove(path);
 }
 
@@ -66,8 +62,8 @@ TEST(MeshImport, AFileThatCrashesAssimpIsAnErrorNamingTheFileAndSignal) {
   const auto path =
       std::filesystem::path(DNURBS_TEST_DATA_DIR) / "malformed_meshes/assimp_crash_header.ply";
   const std::string message = import_error(path);
-  EXPECT_THAT(message, testing::HasSubstr(path.string()));
-  EXPECT_THAT(message, testing::HasSubstr("crashed (signal 11, Segmentation fault)"));
+  EXPECT_THAT(message, ::testing::HasSubstr(path.string()));
+  EXPECT_THAT(message, ::testing::HasSubstr("crashed (signal 11, Segmentation fault)"));
 }
 
 TEST(MeshImport, AFileOnWhichAssimpLoopsForeverEndsAtTheCpuTimeLimit) {
@@ -82,7 +78,7 @@ TEST(MeshImport, AMalformedStlIsAnErrorNamingTheFile) {
   const auto path =
       std::filesystem::path(DNURBS_TEST_DATA_DIR) / "malformed_meshes/assimp_leak_vertex.stl";
   const std::string message = import_error(path);
-  EXPECT_THAT(message, testing::StartsWith(path.string() + ": assimp cannot read the mesh file"));
+  EXPECT_THAT(message, ::testing::StartsWith(path.string() + ": assimp cannot read the mesh file"));
 }
 
 }  // namespace
