@@ -199,6 +199,10 @@ Eigen::VectorXd solve_nonlinear_least_squares(const DNurbsModel& model, const Ei
   return q;
 }
 
+double rms(const Eigen::VectorXd& distances) {
+  return std::sqrt(distances.squaredNorm() / static_cast<double>(distances.size()));
+}
+
 // Shared loop: Shape(q) gives the NURBS, project(shape, p) gives (parameter, distance).
 template <typename ShapeAt, typename Project>
 DNurbsFitResult fit(const DNurbsModel& model, const Eigen::MatrixX3d& points,
@@ -234,11 +238,14 @@ DNurbsFitResult fit(const DNurbsModel& model, const Eigen::MatrixX3d& points,
       moved = std::max(moved, (u - result.parameters.row(k).transpose()).lpNorm<Eigen::Infinity>());
       result.parameters.row(k) = u.transpose();
     }
+    if (settings.on_iteration) {
+      settings.on_iteration(result.iterations, rms(distances));
+    }
     if (moved <= settings.parameter_tolerance * domain_size) {
       break;
     }
   }
-  result.rms_error = std::sqrt(distances.squaredNorm() / static_cast<double>(points.rows()));
+  result.rms_error = rms(distances);
   result.max_error = distances.maxCoeff();
   return result;
 }

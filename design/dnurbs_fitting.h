@@ -12,6 +12,8 @@
 // the same objective (analytic gradient sum L^T (x - p) - smoothness f_int(q)), weights bounded
 // below by the model's minimum weight.
 
+#include <functional>
+
 #include <Eigen/Core>
 
 #include "dynamics/dnurbs/dnurbs_curve.h"
@@ -26,6 +28,9 @@ struct DNurbsFitSettings {
   int max_iterations = 30;
   /// Stop when no parameter moved more than this (relative to the domain) in a re-projection.
   double parameter_tolerance = 1e-12;
+  /// Called after every iteration with its number (from 1) and the rms distance of the points
+  /// to the shape it produced (progress reports; empty: none).
+  std::function<void(int iteration, double rms_error)> on_iteration;
 };
 
 struct DNurbsFitResult {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -47,6 +48,7 @@ struct Problem {
   std::vector<int> variable;    // variable of each velocity index (-1 when held)
   std::vector<int> coordinate;  // stacked coordinate index of each velocity index (or -1)
   int evaluations = 0;
+  const std::function<void(int, double)>* on_evaluation = nullptr;  // DesignSettings'
   // Scratch.
   Eigen::VectorXd q;
   Eigen::VectorXd gradient;
@@ -70,6 +72,9 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
     for (unsigned k = 0; k < n; ++k) {
       grad[k] = problem.gradient[problem.free[k]];
     }
+  }
+  if (*problem.on_evaluation) {
+    (*problem.on_evaluation)(problem.evaluations, value);
   }
   return value;
 }
@@ -227,6 +232,7 @@ DesignResult minimize_energy(const System& system, const ConstraintSolver* const
   const int n = system.velocity_count();
   Problem problem;
   problem.system = &system;
+  problem.on_evaluation = &settings.on_evaluation;
   problem.constraints =
       (constraints != nullptr && constraints->row_count() > 0) ? constraints : nullptr;
   problem.start = system.coordinates();

@@ -14,6 +14,7 @@
 // analytic Jacobian C_q). Fixed coordinates keep their values and are not optimization variables;
 // free weights of D-NURBS models are bounded below by the model's minimum weight.
 
+#include <functional>
 #include <string>
 
 #include <Eigen/Core>
@@ -40,6 +41,9 @@ struct DesignSettings {
   int max_evaluations = 5000;
   /// Wall-clock limit in seconds (0: none).
   double max_seconds = 0.0;
+  /// Called after every evaluation of Pi with the evaluations so far and Pi there (progress
+  /// reports; empty: none). It must not throw.
+  std::function<void(int evaluations, double energy)> on_evaluation;
 };
 
 struct DesignResult {

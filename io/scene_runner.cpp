@@ -130,7 +130,9 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
       write_state();
     }
     if (progress) {
-      progress({step, result.total_steps, simulation.system().time()});
+      const EnergyBudget& budget = simulation.energy_budget();
+      progress({step, result.total_steps, simulation.system().time(),
+                budget.kinetic_energy() + budget.potential_energy()});
     }
   }
   write_state();

@@ -35,6 +35,7 @@ struct SceneRunProgress {
   int step = 0;   ///< steps done
   int total = 0;  ///< steps of the whole run
   double time = 0.0;
+  double energy = 0.0;  ///< kinetic plus elastic energy after the step (log.csv's total_energy)
 };
 
 struct SceneRunResult {

@@ -1,8 +1,13 @@
 #include "tools/design_command.h"
 
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 
+#include "core/progress_report.h"
 #include "design/energy_minimization.h"
 #include "io/mesh_export.h"
 #include "io/output_path.h"
@@ -27,6 +32,7 @@ options:
   --out DIR               output directory (default: design_out)
   --algorithm A           slsqp or auglag_lbfgs (overrides design.algorithm)
   --max-evaluations N     overrides design.max_evaluations
+  --quiet                 no progress lines (on stderr, at most one a second)
 
 exit codes: 0 ok, 1 bad scene or NLopt failure, 2 bad command line
 )";
@@ -48,7 +54,8 @@ DesignSettings design_settings(const SceneDesign& design) {
 
 }  // namespace
 
-int design_command(const std::vector<std::string>& arguments, std::ostream& out) {
+int design_command(const std::vector<std::string>& arguments, std::ostream& out,
+                   std::ostream& err) {
   if (wants_help(arguments)) {
     out << kDesignHelp;
     return kExitOk;
@@ -60,6 +67,7 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out)
   std::filesystem::path directory = "design_out";
   std::optional<std::string> algorithm;
   std::optional<int> max_evaluations;
+  bool quiet = false;
   for (size_t i = 1; i < arguments.size(); ++i) {
     const std::string& flag = arguments[i];
     if (flag == "--out") {
@@ -71,6 +79,8 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out)
       }
     } else if (flag == "--max-evaluations") {
       max_evaluations = parse_int(flag_value(arguments, i), "--max-evaluations", 1, 100000000);
+    } else if (flag == "--quiet") {
+      quiet = true;
     } else {
       throw UsageError("unknown design option '" + flag + "'");
     }
@@ -86,8 +96,22 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out)
   const int resolution = scene.output.resolution;
   const std::string mesh_name = scene.output.name + ".obj";
   SceneSimulation simulation(std::move(scene));
+  DesignSettings settings = design_settings(design);
+  // Progress on stderr (stdout is the JSON result): evaluations of Pi of at most
+  // max_evaluations (NLopt usually stops earlier, so no time left is shown), at most once a second
+  ProgressReport progress(err, "evaluation", ::isatty(STDERR_FILENO) == 1);
+  const auto start = std::chrono::steady_clock::now();
+  if (!quiet) {
+    settings.on_evaluation = [&](int evaluations, double energy) {
+      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+      std::ostringstream detail;
+      detail << "energy " << energy;
+      progress.update(evaluations, 0, elapsed.count(), detail.str());
+    };
+  }
   const DesignResult result =
-      minimize_energy(simulation.system(), &simulation.constraints(), design_settings(design));
+      minimize_energy(simulation.system(), &simulation.constraints(), settings);
+  progress.finish();
   simulation.set_coordinates(result.coordinates);
 
   std::filesystem::create_directories(directory);

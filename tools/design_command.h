@@ -11,8 +11,9 @@ namespace dnurbs::tools {
 extern const char* const kDesignHelp;
 
 /// Takes the arguments after "design"; prints the iterations, energy, constraint violation,
-/// NLopt status and written files as JSON to `out`. Returns kExitError if NLopt failed. Throws
+/// NLopt status and written files as JSON to `out`, and the progress (evaluations, their rate and
+/// the energy) to `err` unless --quiet. Returns kExitError if NLopt failed. Throws
 /// UsageError for a bad command line and Error for a bad scene or a failed write.
-int design_command(const std::vector<std::string>& arguments, std::ostream& out);
+int design_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
 
 }  // namespace dnurbs::tools

@@ -69,10 +69,10 @@ int main(int argc, char** argv) {
       return export_command(rest, std::cout);
     }
     if (command == "fit") {
-      return fit_command(rest, std::cout);
+      return fit_command(rest, std::cout, std::cerr);
     }
     if (command == "design") {
-      return design_command(rest, std::cout);
+      return design_command(rest, std::cout, std::cerr);
     }
     if (command == "serve") {
       return serve_command(rest, std::cout);

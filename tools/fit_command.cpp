@@ -1,12 +1,17 @@
 #include "tools/fit_command.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/progress_report.h"
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "design/superquadric_fitting.h"
@@ -41,6 +46,7 @@ options (surface):
   --spans N           knot spans in u and v (default 4)
   --smoothness S      weight of the thin-plate energy (default 1e-6)
   --iterations N      projection-and-solve iterations (default 30)
+  --quiet             no progress lines (on stderr, at most one a second, for the surface fit)
 
 exit codes: 0 ok, 1 bad data, 2 bad command line
 )";
@@ -89,7 +95,8 @@ int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& ou
 }
 
 int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, double smoothness,
-                        int iterations, const FitOutput& output, std::ostream& out) {
+                        int iterations, const FitOutput& output, std::ostream& out,
+                        const std::function<void(int, double)>& on_iteration) {
   // A flat start over the principal plane of the points, covering their extent.
   const NurbsSurface start = principal_plane_surface(points, degree, spans);
   const KnotVector& knots = start.knots_u();
@@ -101,6 +108,7 @@ int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, d
   DNurbsFitSettings settings;
   settings.smoothness = smoothness;
   settings.max_iterations = iterations;
+  settings.on_iteration = on_iteration;
   const DNurbsFitResult fit = fit_dnurbs_surface(model, points, settings);
   if (output.directory) {
     const NurbsSurface surface = model.surface(fit.coordinates);
@@ -121,7 +129,7 @@ int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, d
 
 }  // namespace
 
-int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
+int fit_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
   if (wants_help(arguments)) {
     out << kFitHelp;
     return kExitOk;
@@ -136,6 +144,7 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
   double smoothness = 1e-6;
   int iterations = 30;
   FitOutput output;
+  bool quiet = false;
   for (size_t i = 2; i < arguments.size(); ++i) {
     const std::string& flag = arguments[i];
     if (flag == "--degree") {
@@ -150,6 +159,8 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
       output.resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
     } else if (flag == "--iterations") {
       iterations = parse_int(flag_value(arguments, i), "--iterations", 1, 100000);
+    } else if (flag == "--quiet") {
+      quiet = true;
     } else {
       throw UsageError(std::string("unknown fit option '").append(flag).append("'"));
     }
@@ -162,7 +173,21 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out) {
   if (shape == "superquadric") {
     return fit_superquadric_command(points, output, out);
   }
-  return fit_surface_command(points, degree, spans, smoothness, iterations, output, out);
+  // Progress on stderr (stdout is the JSON result), at most once a second
+  ProgressReport progress(err, "iteration", ::isatty(STDERR_FILENO) == 1);
+  const auto start = std::chrono::steady_clock::now();
+  const auto on_iteration = [&](int iteration, double rms_error) {
+    if (!quiet) {
+      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+      std::ostringstream detail;
+      detail << "rms distance " << rms_error;
+      progress.update(iteration, 0, elapsed.count(), detail.str());
+    }
+  };
+  const int status =
+      fit_surface_command(points, degree, spans, smoothness, iterations, output, out, on_iteration);
+  progress.finish();
+  return status;
 }
 
 }  // namespace dnurbs::tools

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/progress_report.h"
 #include "io/scene.h"
 #include "io/scene_runner.h"
 #include "io/scene_simulation.h"
@@ -47,6 +48,7 @@ options:
   --stop-after N        stop after N steps in total without writing the final state (as if
                         killed there; for testing --resume)
   --no-preview          skip the PNG preview
+  --quiet               print nothing but errors (no progress, no list of files written)
   -h, --help            this help
 
 Set DNURBS_PYTHON to choose the python interpreter for the preview.
@@ -263,47 +265,6 @@ const char* const kDefaultSceneJson = R"json({
 }
 )json";
 
-namespace {
-
-// A progress bar on a terminal, else a plain line every 10 %
-class Progress {
- public:
-  Progress(std::ostream& out, bool terminal) : out_(out), terminal_(terminal) {}
-  void update(const SceneRunProgress& p) {
-    const int percent = p.total > 0 ? static_cast<int>(100LL * p.step / p.total) : 100;
-    if (terminal_) {
-      if (percent == last_ && p.step != p.total) {
-        return;
-      }
-      const int width = 40;
-      const int filled = percent * width / 100;
-      std::ostringstream line;
-      line << "\r[" << std::string(static_cast<size_t>(filled), '#')
-           << std::string(static_cast<size_t>(width - filled), ' ') << "] " << percent << "% step "
-           << p.step << "/" << p.total << " t = " << p.time;
-      out_ << line.str() << std::flush;
-      if (p.step == p.total) {
-        out_ << "\n";
-      }
-    } else if (percent / 10 != last_ / 10 || p.step == p.total) {
-      out_ << "step " << p.step << "/" << p.total << " (" << percent << "%) t = " << p.time << "\n";
-    }
-    last_ = percent;
-  }
-  void finish() {
-    if (terminal_ && last_ >= 0 && last_ < 100) {
-      out_ << "\n";
-    }
-  }
-
- private:
-  std::ostream& out_;
-  bool terminal_;
-  int last_ = -1;
-};
-
-}  // namespace
-
 int run_command(const std::vector<std::string>& arguments, const std::string& program,
                 std::ostream& out, std::ostream& err) {
   if (wants_help(arguments)) {
@@ -313,6 +274,7 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
   SceneRunOptions options;
   std::optional<std::string> scene_file;
   bool preview = true;
+  bool quiet = false;
   for (size_t i = 0; i < arguments.size(); ++i) {
     const std::string& argument = arguments[i];
     if (argument == "--out") {
@@ -325,6 +287,8 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
       options.stop_after = parse_int(flag_value(arguments, i), "--stop-after", 0, 100000000);
     } else if (argument == "--no-preview") {
       preview = false;
+    } else if (argument == "--quiet") {
+      quiet = true;
     } else if (argument.starts_with("-")) {
       throw UsageError("unknown option " + argument);
     } else if (scene_file) {
@@ -334,47 +298,57 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
     }
   }
 
+  std::ostream silent(nullptr);  // no buffer: what is written to it goes nowhere
+  std::ostream& shown = quiet ? silent : out;
   const Scene scene = scene_file ? read_scene_file(*scene_file)
                                  : parse_scene_json(kDefaultSceneJson, "<default demo>");
   SceneSimulation simulation(scene);
   const System& system = simulation.system();
-  out << "scene " << scene.source << ": " << system.model_count() << " model(s), "
-      << system.velocity_count() << " velocities (" << system.fixed_coordinates().size()
-      << " fixed), " << scene.forces.size() << " force(s), "
-      << simulation.constraints().constraint_count() << " constraint(s); " << scene.step_count()
-      << " steps of dt = " << scene.integrator.dt << " (" << scene.integrator.scheme << ")\n";
+  shown << "scene " << scene.source << ": " << system.model_count() << " model(s), "
+        << system.velocity_count() << " velocities (" << system.fixed_coordinates().size()
+        << " fixed), " << scene.forces.size() << " force(s), "
+        << simulation.constraints().constraint_count() << " constraint(s); " << scene.step_count()
+        << " steps of dt = " << scene.integrator.dt << " (" << scene.integrator.scheme << ")\n";
   if (options.resume) {
-    out << "resuming from " << options.resume->string() << "\n";
+    shown << "resuming from " << options.resume->string() << "\n";
   }
 
-  Progress progress(out, ::isatty(STDOUT_FILENO) == 1);
+  // Steps done, the rate, the time left, the simulated time and the energy (core/progress_report.h)
+  ProgressReport progress(shown, "step", ::isatty(STDOUT_FILENO) == 1);
   const auto start = std::chrono::steady_clock::now();
-  const SceneRunResult result =
-      run_scene(simulation, options, [&](const SceneRunProgress& p) { progress.update(p); });
+  const auto seconds_since_start = [&start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const SceneRunResult result = run_scene(simulation, options, [&](const SceneRunProgress& p) {
+    if (!quiet) {
+      std::ostringstream detail;
+      detail << "t = " << p.time << ", energy " << p.energy;
+      progress.update(p.step, p.total, seconds_since_start(), detail.str());
+    }
+  });
   progress.finish();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since_start();
 
   if (result.stopped) {
-    out << "stopped after step " << result.steps_done << " of " << result.total_steps
-        << " (--stop-after); continue with --resume "
-        << (options.output_directory / "checkpoint.json").string() << "\n";
+    shown << "stopped after step " << result.steps_done << " of " << result.total_steps
+          << " (--stop-after); continue with --resume "
+          << (options.output_directory / "checkpoint.json").string() << "\n";
     return kExitOk;
   }
-  out << "ran " << result.steps_done << " of " << result.total_steps << " steps in " << seconds
-      << " s (t = " << system.time() << ")\n";
-  out << "wrote " << result.log.string() << "\n";
+  shown << "ran " << result.steps_done << " of " << result.total_steps << " steps in " << seconds
+        << " s (t = " << system.time() << ")\n";
+  shown << "wrote " << result.log.string() << "\n";
   if (result.frames_written > 0) {
-    out << "wrote " << result.frames_written << " mesh frame(s) to "
-        << (options.output_directory / "frames").string() << "\n";
+    shown << "wrote " << result.frames_written << " mesh frame(s) to "
+          << (options.output_directory / "frames").string() << "\n";
   }
   if (!result.final_mesh.empty()) {
-    out << "wrote " << result.final_mesh.string() << " (final state)\n";
+    shown << "wrote " << result.final_mesh.string() << " (final state)\n";
   }
   for (const auto& shape : result.shape_files) {
-    out << "wrote " << shape.string() << " (final shape)\n";
+    shown << "wrote " << shape.string() << " (final shape)\n";
   }
-  out << "wrote " << result.checkpoint.string() << " (step " << result.steps_done << ")\n";
+  shown << "wrote " << result.checkpoint.string() << " (step " << result.steps_done << ")\n";
   if (result.diverged) {
     err << "dnurbs run: error: " << result.message << "\n"
         << "dnurbs run: the run stopped; the last good state (step " << result.steps_done
@@ -385,13 +359,13 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
   }
   const ConstraintReport& report = simulation.constraints().last_report();
   if (!report.message.empty()) {
-    out << "constraints: " << report.message << "\n";
+    shown << "constraints: " << report.message << "\n";
   }
   if (scene.output.preview && preview && !result.final_mesh.empty()) {
     std::filesystem::path png = result.final_mesh;
     png.replace_extension(".png");
     render_preview_png(program, result.final_mesh, png);
-    out << "wrote " << png.string() << " (shaded preview of the final frame)\n";
+    shown << "wrote " << png.string() << " (shaded preview of the final frame)\n";
   }
   return kExitOk;
 }

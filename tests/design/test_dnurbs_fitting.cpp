@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -65,11 +67,22 @@ TEST(DNurbsSurfaceFitting, ParameterCorrectionRecoversACurvedParameterization) {
   const DNurbsSurface model(graph_patch(knots, knots, [](double, double) { return 0.0; }));
   DNurbsFitSettings settings;
   settings.max_iterations = 40;
+  std::vector<std::pair<int, double>> reported;  // the progress callback's (iteration, rms)
+  settings.on_iteration = [&reported](int iteration, double rms) {
+    reported.emplace_back(iteration, rms);
+  };
   const DNurbsFitResult result = fit_dnurbs_surface(model, surface_samples(target, 10), settings);
   std::cout << "curved parameterization: " << result.iterations << " iterations, rms "
             << result.rms_error << ", max " << result.max_error << "\n";
   // Parameter correction converges linearly; measured 1e-4 after 40 iterations.
   EXPECT_LT(result.max_error, 3e-4);
+  // Every iteration is reported once, in order, the last with the result's rms distance
+  ASSERT_EQ(reported.size(), static_cast<size_t>(result.iterations));
+  for (size_t i = 0; i < reported.size(); ++i) {
+    EXPECT_EQ(reported[i].first, static_cast<int>(i) + 1);
+  }
+  EXPECT_EQ(reported.back().second, result.rms_error);
+  EXPECT_GT(reported.front().second, 2.0 * result.rms_error);
 }
 
 TEST(DNurbsCurveFitting, ReproducesAKnownCurve) {

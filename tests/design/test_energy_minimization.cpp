@@ -1,6 +1,8 @@
 #include "design/energy_minimization.h"
 
+#include <algorithm>
 #include <iostream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -29,7 +31,16 @@ TEST(EnergyMinimization, FixedWeightsMatchTheDirectLinearSolve) {
        {DesignAlgorithm::kSlsqp, DesignAlgorithm::kAugmentedLagrangianLbfgs}) {
     DesignSettings settings;
     settings.algorithm = algorithm;
+    std::vector<double> reported;  // the progress callback's energies, one per evaluation
+    settings.on_evaluation = [&reported](int evaluations, double energy) {
+      EXPECT_EQ(evaluations, static_cast<int>(reported.size()) + 1);
+      reported.push_back(energy);
+    };
     const DesignResult result = minimize_energy(system, nullptr, settings);
+    ASSERT_EQ(reported.size(), static_cast<size_t>(result.iterations));
+    // Without constraints the optimum is the lowest energy evaluated (the result's energy is
+    // evaluated again there without the gradient, by the same arithmetic)
+    EXPECT_EQ(*std::min_element(reported.begin(), reported.end()), result.energy);
     const double error = (result.coordinates - reference.coordinates()).lpNorm<Eigen::Infinity>();
     std::cout << "fixed weights, algorithm " << static_cast<int>(algorithm) << ": "
               << result.iterations << " evaluations, status " << result.status_name << ", energy "

@@ -57,8 +57,9 @@ TEST(DesignCommand, WrittenShapeReloadsAsTheLibraryOptimum) {
   const auto directory = fresh_directory("design");
   const auto scene_path = directory / "rod_scene.json";
   write(scene_path, kDesignScene);
-  const auto result =
-      run_dnurbs("design " + scene_path.string() + " --out " + (directory / "out").string());
+  // --quiet (no progress lines on stderr) is accepted
+  const auto result = run_dnurbs("design " + scene_path.string() + " --out " +
+                                 (directory / "out").string() + " --quiet");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const Json printed = Json::parse(result.out);
 
@@ -124,8 +125,9 @@ TEST(FitCommand, SurfaceShapeFileReproducesAPlane) {
     }
   }
   const auto out = directory / "out";
-  const auto result = run_dnurbs("fit surface " + points_path.string() +
-                                 " --degree 2 --spans 3 --smoothness 0 --out " + out.string());
+  const auto result =
+      run_dnurbs("fit surface " + points_path.string() +
+                 " --degree 2 --spans 3 --smoothness 0 --out " + out.string() + " --quiet");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const Json printed = Json::parse(result.out);
   EXPECT_LT(printed.at("rms_error").get<double>(), 1e-8);

@@ -6,10 +6,12 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -52,8 +54,14 @@ TEST(RunCommand, DefaultDemoWritesFramesLogFinalMeshPreviewAndShapes) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(result.exit_code, 0) << result.err;
   RecordProperty("demo_seconds", std::to_string(seconds));
-  // Not a terminal: plain progress lines, one per 10 %
-  EXPECT_THAT(result.out, HasSubstr("step 100/200 (50%)"));
+  // Not a terminal: plain progress lines, one per 10 %, with the rate, the time left, the
+  // simulated time and the energy (log.csv's total_energy at that step, to the 6 digits printed)
+  std::smatch line;
+  ASSERT_TRUE(std::regex_search(result.out, line,
+                                std::regex("\nstep 100/200 \\(50%\\), [0-9.e+]+ steps/s, [^;]+ "
+                                           "left; t = ([0-9.e+-]+), energy ([0-9.e+-]+)\n")))
+      << result.out;
+  EXPECT_EQ(std::stod(line[1]), 1.0);  // dt 0.01
   EXPECT_EQ(result.out.find('\r'), std::string::npos);
   for (const char* file :
        {"log.csv", "checkpoint.json", "demo.obj", "demo.mtl", "demo.png", "hat.json", "torus.json",
@@ -81,6 +89,18 @@ TEST(RunCommand, DefaultDemoWritesFramesLogFinalMeshPreviewAndShapes) {
                                          "total_energy,max_violation,violation_0,violation_1,"
                                          "crown_x"));
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1 + 201);
+  std::istringstream rows(log);
+  std::string row;
+  for (int i = 0; i <= 101; ++i) {  // the header, the initial state, then step 1 to 100
+    std::getline(rows, row);
+  }
+  ASSERT_TRUE(row.starts_with("100,"));
+  std::istringstream fields(row);
+  std::string field;
+  for (int i = 0; i < 5; ++i) {  // step, time, kinetic_energy, potential_energy, total_energy
+    std::getline(fields, field, ',');
+  }
+  EXPECT_NEAR(std::stod(line[2]), std::stod(field), 1e-5 * std::abs(std::stod(field)));
   EXPECT_EQ(read_checkpoint_file(directory / "checkpoint.json").step, 200);
   EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "hat.json")));
   const std::string png = read_text(directory / "demo.png");
@@ -123,8 +143,10 @@ TEST(RunCommand, RunStoppedPartWayAndResumedEndsLikeAnUninterruptedRun) {
   const auto scene_path = directory / "snake.json";
   std::ofstream(scene_path) << scene;
   const Result whole =
-      run("run " + scene_path.string() + " --out " + (directory / "whole").string());
+      run("run " + scene_path.string() + " --out " + (directory / "whole").string() + " --quiet");
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.out, "");  // --quiet: nothing but errors
+  EXPECT_EQ(whole.err, "");
   const Result stopped = run("run " + scene_path.string() + " --out " +
                              (directory / "parts").string() + " --stop-after 100");
   ASSERT_EQ(stopped.exit_code, 0) << stopped.err;
