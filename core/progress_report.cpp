@@ -15,7 +15,9 @@ constexpr double kUnknownTotalInterval = 1.0;
 constexpr int kBarWidth = 40;
 
 std::string two_digits(long long value) {
-  return (value < 10 ? "0" : "") + std::to_string(value);
+  char text[24];
+  std::snprintf(text, sizeof text, "%02lld", value);
+  return text;
 }
 
 }  // namespace
