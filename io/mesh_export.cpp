@@ -22,6 +22,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
+#include "io/mesh_up_axis.h"
 #include "io/output_path.h"
 
 namespace dnurbs {
@@ -249,8 +250,9 @@ aiMaterial* make_material(const std::string& name, size_t index) {
   return material.release();
 }
 
-// One mesh, one material and one child node of the root per TriangleMesh
-std::unique_ptr<aiScene> build_scene(const std::vector<TriangleMesh>& meshes) {
+// One mesh, one material and one child node of the root per TriangleMesh; `y_up`: the vertices
+// and normals turned into a Y-up file's frame (io/mesh_up_axis.h)
+std::unique_ptr<aiScene> build_scene(const std::vector<TriangleMesh>& meshes, bool y_up) {
   auto scene = std::make_unique<aiScene>();
   const auto count = static_cast<unsigned>(meshes.size());
   scene->mRootNode = new aiNode("dnurbs");
@@ -265,7 +267,7 @@ std::unique_ptr<aiScene> build_scene(const std::vector<TriangleMesh>& meshes) {
     // A name goes into the file as text (OBJ "o"/"g"/"usemtl", MTL "newmtl", glTF JSON): only a
     // plain name (io/output_path.h), so that none can break a line or inject records
     const std::string name = output_file_stem(mesh.name, "mesh_" + std::to_string(i));
-    TriangleMesh named = mesh;
+    TriangleMesh named = y_up ? rotated_mesh(mesh, z_up_to_y_up()) : mesh;
     named.name = name;
     scene->mMeshes[i] = to_assimp_mesh(named, i);
     scene->mMaterials[i] = make_material(name + "_material", i);
@@ -310,7 +312,7 @@ void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesyste
   for (size_t i = 0; i < meshes.size(); ++i) {
     check_mesh(meshes[i], i);
   }
-  const std::unique_ptr<aiScene> scene = build_scene(meshes);
+  const std::unique_ptr<aiScene> scene = build_scene(meshes, is_y_up_mesh_file(path));
 
   Assimp::Exporter exporter;
   auto* file_system = new TemporaryFileSystem;

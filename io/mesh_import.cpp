@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string_view>
+#include <utility>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -13,6 +14,7 @@
 #include "core/child_process_call.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "io/mesh_up_axis.h"
 
 namespace dnurbs {
 namespace {
@@ -176,6 +178,11 @@ std::vector<TriangleMesh> read_with_assimp(const std::filesystem::path& path) {
   }
   std::vector<TriangleMesh> meshes;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), meshes);
+  if (is_y_up_mesh_file(path)) {  // glTF is Y-up: back to dnurbs' Z-up (io/mesh_up_axis.h)
+    for (TriangleMesh& mesh : meshes) {
+      mesh = rotated_mesh(std::move(mesh), z_up_to_y_up().transpose());
+    }
+  }
   return meshes;
 }
 

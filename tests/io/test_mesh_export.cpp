@@ -11,6 +11,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "io/mesh_import.h"
@@ -22,6 +23,7 @@ namespace dnurbs {
 namespace {
 
 using ::testing::HasSubstr;
+using Json = nlohmann::json;
 
 std::filesystem::path fresh_directory(const std::string& name) {
   const auto directory = std::filesystem::temp_directory_path() /
@@ -121,6 +123,36 @@ TEST_P(MeshExportRoundTrip, ImportGivesTheSameVerticesAndTriangles) {
 
 INSTANTIATE_TEST_SUITE_P(Formats, MeshExportRoundTrip,
                          ::testing::Values("obj", "stl", "ply", "gltf", "glb"));
+
+// glTF is Y-up (io/mesh_up_axis.h): the file holds (x, z, -y), which its POSITION accessor's
+// bounds show, and the import turns it back exactly; OBJ keeps the model's axes
+TEST(MeshExport, GltfIsWrittenYUpAndReadBackZUp) {
+  TriangleMesh triangle;
+  triangle.name = "tri";
+  triangle.vertices.resize(3, 3);
+  triangle.vertices << 0, 0, 0,  //
+      1, 0, 0,                   //
+      0, 2, 1;
+  triangle.triangles.resize(1, 3);
+  triangle.triangles << 0, 1, 2;
+  const auto directory = fresh_directory("y_up");
+  export_mesh(triangle, directory / "tri.gltf");
+  const Json gltf = Json::parse(std::ifstream(directory / "tri.gltf"));
+  const int position =
+      gltf.at("meshes").at(0).at("primitives").at(0).at("attributes").at("POSITION");
+  const Json& accessor = gltf.at("accessors").at(static_cast<size_t>(position));
+  EXPECT_EQ(accessor.at("min"), Json::parse("[0, 0, -2]"));
+  EXPECT_EQ(accessor.at("max"), Json::parse("[1, 1, 0]"));
+  for (const char* name : {"tri.gltf", "tri.glb", "tri.obj"}) {
+    if (std::string(name) != "tri.gltf") {
+      export_mesh(triangle, directory / name);
+    }
+    const std::vector<TriangleMesh> meshes = import_meshes(directory / name);
+    ASSERT_EQ(meshes.size(), 1U) << name;
+    EXPECT_EQ(meshes[0].vertices, triangle.vertices) << name;
+  }
+  std::filesystem::remove_all(directory);
+}
 
 TEST(MeshExport, ObjKeepsOneObjectPerMeshWithNormalsAndUv) {
   const auto directory = fresh_directory("obj_objects");
