@@ -1,5 +1,7 @@
 #include "core/input_file.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -32,6 +34,13 @@ void check_input_file(const std::filesystem::path& path, std::string_view what,
     throw make_error(path.string(), ": the ", what, " holds ", size,
                      " bytes, more than the limit of ", limit);
   }
+}
+
+std::string lowercase_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
 }
 
 std::string printable_excerpt(std::string_view text, std::size_t max_bytes) {

@@ -28,6 +28,10 @@ void check_input_file(const std::filesystem::path& path, std::string_view what,
 /// cut; so that a message can neither carry line breaks or terminal controls nor much of a file.
 std::string printable_excerpt(std::string_view text, std::size_t max_bytes = 40);
 
+/// The path's extension in lower case, with its dot (".gltf" for "Part.GLTF"), which decides
+/// how a file is read or written.
+std::string lowercase_extension(const std::filesystem::path& path);
+
 /// check_input_file, then the whole file's bytes (at most `limit`, even if it grows meanwhile).
 /// Throws Error "<path>: cannot read the <what>: <reason>" if opening or reading fails.
 std::string read_input_file(const std::filesystem::path& path, std::string_view what,

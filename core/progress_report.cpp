@@ -109,6 +109,14 @@ void ProgressReport::update(long long done, long long total, double elapsed_seco
   out_ << (last ? "\n" : "") << std::flush;
 }
 
+void ProgressReport::update(long long done, long long total, const std::string& detail) {
+  update(done, total, elapsed_seconds(), detail);
+}
+
+double ProgressReport::elapsed_seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
 void ProgressReport::finish() {
   if (bar_open_) {
     out_ << "\n" << std::flush;

@@ -3,9 +3,11 @@
 // evaluations) as the command line shows it: units done of a total, the rate measured since the
 // first report, the time left at that rate, and what the caller adds (the simulated time and the
 // energy, a fit's distance). On a terminal one line redrawn in place with a bar; elsewhere (a
-// log, a pipe) a line every tenth of the total and at the end. The caller passes the elapsed
-// time, so that what is printed is a function of its arguments (and testable).
+// log, a pipe) a line every tenth of the total and at the end. Time is measured from the
+// report's construction; the overloads that take the elapsed time make what is printed a
+// function of the arguments (for tests).
 
+#include <chrono>
 #include <ostream>
 #include <string>
 
@@ -24,6 +26,10 @@ class ProgressReport {
   /// `elapsed_seconds` since the computation started; `detail` is appended ("t = 0.2, energy
   /// 1.5"). Prints when the line changes enough to be worth it (see the file comment).
   void update(long long done, long long total, double elapsed_seconds, const std::string& detail);
+  /// update at the time elapsed since the report was made.
+  void update(long long done, long long total, const std::string& detail);
+  /// Seconds since the report was made (the computation's wall-clock time).
+  double elapsed_seconds() const;
   /// Ends a bar left unfinished on a terminal (a run stopped early) with its line break.
   void finish();
 
@@ -37,6 +43,7 @@ class ProgressReport {
   std::ostream& out_;
   std::string unit_;
   bool terminal_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   bool has_baseline_ = false;
   long long baseline_done_ = 0;
   double baseline_seconds_ = 0.0;

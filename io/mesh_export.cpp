@@ -1,8 +1,6 @@
 #include "io/mesh_export.h"
 
-#include <algorithm>
 #include <array>
-#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -21,6 +19,7 @@
 #include <assimp/IOStream.hpp>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/atomic_write.h"
 #include "io/mesh_up_axis.h"
 #include "io/output_path.h"
@@ -283,9 +282,7 @@ std::unique_ptr<aiScene> build_scene(const std::vector<TriangleMesh>& meshes, bo
 }  // namespace
 
 MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lowercase_extension(path);
   for (const MeshFormatName& entry : kMeshFormatNames) {
     if (extension == entry.extension) {
       return entry.format;
@@ -312,7 +309,8 @@ void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesyste
   for (size_t i = 0; i < meshes.size(); ++i) {
     check_mesh(meshes[i], i);
   }
-  const std::unique_ptr<aiScene> scene = build_scene(meshes, is_y_up_mesh_file(path));
+  const std::unique_ptr<aiScene> scene =
+      build_scene(meshes, format == MeshFormat::kGltf || format == MeshFormat::kGlb);
 
   Assimp::Exporter exporter;
   auto* file_system = new TemporaryFileSystem;

@@ -1,15 +1,13 @@
 #include "io/mesh_up_axis.h"
 
-#include <algorithm>
-#include <cctype>
 #include <string>
+
+#include "core/input_file.h"
 
 namespace dnurbs {
 
 bool is_y_up_mesh_file(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lowercase_extension(path);
   return extension == ".gltf" || extension == ".glb";
 }
 

@@ -1,7 +1,5 @@
 #include "io/scene_fit.h"
 
-#include <algorithm>
-#include <cctype>
 #include <string>
 #include <vector>
 
@@ -9,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "io/mesh_import.h"
@@ -59,9 +58,7 @@ DNurbsFitSettings fit_settings(const SceneFit& fit) {
 }  // namespace
 
 Eigen::MatrixX3d read_fit_points(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lowercase_extension(path);
   if (extension == ".xyz" || extension == ".txt" || extension == ".csv") {
     return load_points(path);
   }

@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -100,13 +99,11 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out,
   // Progress on stderr (stdout is the JSON result): evaluations of Pi of at most
   // max_evaluations (NLopt usually stops earlier, so no time left is shown), at most once a second
   ProgressReport progress(err, "evaluation", ::isatty(STDERR_FILENO) == 1);
-  const auto start = std::chrono::steady_clock::now();
   if (!quiet) {
-    settings.on_evaluation = [&](int evaluations, double energy) {
-      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+    settings.on_evaluation = [&progress](int evaluations, double energy) {
       std::ostringstream detail;
       detail << "energy " << energy;
-      progress.update(evaluations, 0, elapsed.count(), detail.str());
+      progress.update(evaluations, 0, detail.str());
     };
   }
   const DesignResult result =

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -175,15 +174,14 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out, st
   }
   // Progress on stderr (stdout is the JSON result), at most once a second
   ProgressReport progress(err, "iteration", ::isatty(STDERR_FILENO) == 1);
-  const auto start = std::chrono::steady_clock::now();
-  const auto on_iteration = [&](int iteration, double rms_error) {
-    if (!quiet) {
-      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  std::function<void(int, double)> on_iteration;
+  if (!quiet) {
+    on_iteration = [&progress](int iteration, double rms_error) {
       std::ostringstream detail;
       detail << "rms distance " << rms_error;
-      progress.update(iteration, 0, elapsed.count(), detail.str());
-    }
-  };
+      progress.update(iteration, 0, detail.str());
+    };
+  }
   const int status =
       fit_surface_command(points, degree, spans, smoothness, iterations, output, out, on_iteration);
   progress.finish();

@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -315,19 +314,15 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
 
   // Steps done, the rate, the time left, the simulated time and the energy (core/progress_report.h)
   ProgressReport progress(shown, "step", ::isatty(STDOUT_FILENO) == 1);
-  const auto start = std::chrono::steady_clock::now();
-  const auto seconds_since_start = [&start] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
   const SceneRunResult result = run_scene(simulation, options, [&](const SceneRunProgress& p) {
     if (!quiet) {
       std::ostringstream detail;
       detail << "t = " << p.time << ", energy " << p.energy;
-      progress.update(p.step, p.total, seconds_since_start(), detail.str());
+      progress.update(p.step, p.total, detail.str());
     }
   });
   progress.finish();
-  const double seconds = seconds_since_start();
+  const double seconds = progress.elapsed_seconds();
 
   if (result.stopped) {
     shown << "stopped after step " << result.steps_done << " of " << result.total_steps
