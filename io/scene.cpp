@@ -1,5 +1,6 @@
 #include "io/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -213,7 +214,24 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
                  "checkpoint_every", "name", "shape_files"});
   reader.integer_key(output, path, "mesh_every", o.mesh_every, 0, 100000000);
   if (const JsonValue* format = reader.find(output, "format")) {
-    o.format = reader.choice(*format, "output.format", {"obj", "stl", "ply", "gltf", "glb"});
+    const std::initializer_list<const char*> formats = {"obj", "stl", "ply", "gltf", "glb"};
+    if (format->is_array()) {
+      if (format->empty()) {
+        reader.fail("output.format", "expected a format or a non-empty array of formats, got " +
+                                         describe_json_value(*format));
+      }
+      o.formats.clear();
+      for (size_t i = 0; i < format->size(); ++i) {
+        const std::string at = json_index_path("output.format", i);
+        std::string one = reader.choice((*format)[i], at, formats);
+        if (std::find(o.formats.begin(), o.formats.end(), one) != o.formats.end()) {
+          reader.fail(at, "format \"" + one + "\" listed twice");
+        }
+        o.formats.push_back(std::move(one));
+      }
+    } else {
+      o.formats = {reader.choice(*format, "output.format", formats)};
+    }
   }
   reader.integer_key(output, path, "resolution", o.resolution, 3, 1024);
   reader.boolean_key(output, path, "final_mesh", o.final_mesh);
@@ -223,11 +241,6 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   reader.integer_key(output, path, "checkpoint_every", o.checkpoint_every, 0, 100000000);
   if (const JsonValue* name = reader.find(output, "name")) {
     o.name = reader.name(*name, "output.name");
-  }
-  if (o.preview && o.format != "obj") {
-    reader.fail("output.preview",
-                "expected false unless output.format is \"obj\" (the "
-                "preview renders the final OBJ mesh)");
   }
   if (o.preview && !o.final_mesh) {
     reader.fail("output.preview", "expected false when output.final_mesh is false");
@@ -375,15 +388,16 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
   }
   if (with_output) {
     const SceneOutput& o = scene.output;
-    root["output"] = {{"mesh_every", o.mesh_every},
-                      {"format", o.format},
-                      {"resolution", o.resolution},
-                      {"final_mesh", o.final_mesh},
-                      {"preview", o.preview},
-                      {"log_every", o.log_every},
-                      {"checkpoint_every", o.checkpoint_every},
-                      {"name", o.name},
-                      {"shape_files", o.shape_files}};
+    root["output"] = {
+        {"mesh_every", o.mesh_every},
+        {"format", o.formats.size() == 1 ? JsonOut(o.formats.front()) : JsonOut(o.formats)},
+        {"resolution", o.resolution},
+        {"final_mesh", o.final_mesh},
+        {"preview", o.preview},
+        {"log_every", o.log_every},
+        {"checkpoint_every", o.checkpoint_every},
+        {"name", o.name},
+        {"shape_files", o.shape_files}};
   }
   if (scene.design) {
     const SceneDesign& d = *scene.design;

@@ -89,7 +89,9 @@ struct SceneProbe {
 
 struct SceneOutput {
   int mesh_every = 0;          ///< a mesh every N steps (0: none but the final one)
-  std::string format = "obj";  ///< obj, stl, ply, gltf, glb
+  /// Mesh formats, distinct, of obj, stl, ply, gltf, glb: the final mesh is written in each,
+  /// frames in the first; the preview renders the first.
+  std::vector<std::string> formats = {"obj"};
   int resolution = 24;         ///< mesh segments per direction
   bool final_mesh = true;
   bool preview = false;        ///< PNG of the final mesh (the tool renders it)

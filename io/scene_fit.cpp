@@ -11,6 +11,7 @@
 #include "design/dnurbs_fitting.h"
 #include "design/point_set.h"
 #include "io/mesh_import.h"
+#include "nurbs/shape_generators.h"
 
 namespace dnurbs {
 
@@ -30,15 +31,6 @@ PrincipalFrame principal_frame(const Eigen::MatrixX3d& points) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
   frame.axes = eigen.eigenvectors().rowwise().reverse();  // eigenvalues come increasing
   return frame;
-}
-
-// The Greville abscissa of control point i: the mean of knots i + 1 .. i + degree.
-double greville(const KnotVector& knots, int degree, int i) {
-  double sum = 0.0;
-  for (int k = 1; k <= degree; ++k) {
-    sum += knots[i + k];
-  }
-  return sum / degree;
 }
 
 void check_start(int degree, int spans) {
@@ -78,13 +70,14 @@ NurbsSurface principal_plane_surface(const Eigen::MatrixX3d& points, int degree,
   const Eigen::VectorXd along_v = centred * frame.axes.col(1);
   const KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
   const int n = knots.control_point_count();
+  const std::vector<double> xi = greville_abscissae(knots);
   Eigen::MatrixX3d control(n * n, 3);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double x = along_u.minCoeff() +
-                       greville(knots, degree, i) * (along_u.maxCoeff() - along_u.minCoeff());
+                       xi[static_cast<size_t>(i)] * (along_u.maxCoeff() - along_u.minCoeff());
       const double y = along_v.minCoeff() +
-                       greville(knots, degree, j) * (along_v.maxCoeff() - along_v.minCoeff());
+                       xi[static_cast<size_t>(j)] * (along_v.maxCoeff() - along_v.minCoeff());
       control.row(i * n + j) =
           frame.centroid + (x * frame.axes.col(0) + y * frame.axes.col(1)).transpose();
     }
@@ -98,10 +91,11 @@ NurbsCurve principal_axis_curve(const Eigen::MatrixX3d& points, int degree, int 
   const Eigen::VectorXd along = (points.rowwise() - frame.centroid) * frame.axes.col(0);
   const KnotVector knots = KnotVector::clamped_uniform(degree, spans + degree);
   const int n = knots.control_point_count();
+  const std::vector<double> xi = greville_abscissae(knots);
   Eigen::MatrixX3d control(n, 3);
   for (int i = 0; i < n; ++i) {
     const double x =
-        along.minCoeff() + greville(knots, degree, i) * (along.maxCoeff() - along.minCoeff());
+        along.minCoeff() + xi[static_cast<size_t>(i)] * (along.maxCoeff() - along.minCoeff());
     control.row(i) = frame.centroid + x * frame.axes.col(0).transpose();
   }
   return NurbsCurve(knots, control);

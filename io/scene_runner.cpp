@@ -23,7 +23,7 @@ std::filesystem::path frame_path(const std::filesystem::path& directory, const S
   name += '_';
   name += number;
   name += '.';
-  name += output.format;
+  name += output.formats.front();
   return output_file_path(directory / "frames", name);
 }
 
@@ -78,8 +78,13 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
   };
   const auto write_final_mesh = [&]() {
     if (output.final_mesh) {
-      result.final_mesh = output_file_path(directory, output.name + "." + output.format);
-      export_meshes(simulation.meshes(resolution), result.final_mesh);
+      const std::vector<TriangleMesh> meshes = simulation.meshes(resolution);
+      result.final_meshes.clear();
+      for (const std::string& format : output.formats) {
+        result.final_meshes.push_back(output_file_path(directory, output.name + "." + format));
+        export_meshes(meshes, result.final_meshes.back());
+      }
+      result.final_mesh = result.final_meshes.front();
     }
     if (output.shape_files) {
       for (int i = 0; i < simulation.system().model_count(); ++i) {

@@ -5,9 +5,10 @@
 //
 // Files in the output directory:
 //   log.csv                        step, time, energies, constraint violations, probe positions
-//   frames/<name>_<step>.<format>  a mesh of every model every output.mesh_every steps
+//   frames/<name>_<step>.<format>  a mesh of every model every output.mesh_every steps, in the
+//                                  first output format
 //   checkpoint.json                the state every output.checkpoint_every steps and at the end
-//   <name>.<format>                the final meshes (output.final_mesh)
+//   <name>.<format>                the final meshes (output.final_mesh), in every output format
 //   <model name>.json              final D-NURBS shapes as shape files (output.shape_files)
 
 #include <filesystem>
@@ -46,9 +47,10 @@ struct SceneRunResult {
   std::string message;    ///< the divergence message
   int frames_written = 0;
   std::filesystem::path log;
-  std::filesystem::path checkpoint;                ///< empty if none was written
-  std::filesystem::path final_mesh;                ///< empty if none was written
-  std::vector<std::filesystem::path> shape_files;  ///< final D-NURBS shapes written
+  std::filesystem::path checkpoint;  ///< empty if none was written
+  std::filesystem::path final_mesh;  ///< the first of final_meshes; empty if none was written
+  std::vector<std::filesystem::path> final_meshes;  ///< one per output format
+  std::vector<std::filesystem::path> shape_files;   ///< final D-NURBS shapes written
 };
 
 /// Runs `simulation` (resuming first if asked). Throws Error for unwritable files or a bad

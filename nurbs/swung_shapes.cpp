@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "nurbs/primitive_shapes.h"
+#include "nurbs/shape_generators.h"
 
 namespace dnurbs {
 namespace {
@@ -14,27 +15,6 @@ void check_positive(double value, const char* name) {
   if (!std::isfinite(value) || !(value > 0.0)) {
     throw make_error(name, " must be finite and > 0, got ", value);
   }
-}
-
-// A straight profile from (x0, 0, z0) to (x1, 0, z1) with `count` control points at the
-// Greville abscissae of a clamped uniform knot vector, so the profile is linear in u.
-NurbsCurve straight_profile(double x0, double z0, double x1, double z1, int count) {
-  if (count < 2) {
-    throw make_error("a straight profile needs at least 2 control points, got ", count);
-  }
-  const int degree = std::min(3, count - 1);
-  KnotVector knots = KnotVector::clamped_uniform(degree, count);
-  Eigen::MatrixX3d points = Eigen::MatrixX3d::Zero(count, 3);
-  for (int i = 0; i < count; ++i) {
-    double greville = 0.0;
-    for (int k = 1; k <= degree; ++k) {
-      greville += knots[i + k];
-    }
-    greville /= degree;
-    points(i, 0) = x0 + greville * (x1 - x0);
-    points(i, 2) = z0 + greville * (z1 - z0);
-  }
-  return NurbsCurve(std::move(knots), std::move(points));
 }
 
 }  // namespace
@@ -80,7 +60,7 @@ SwungSurface swung_open_profile(double x0, double z0, double x1, double z1,
     throw make_error("swung open profile from (", x0, ", ", z0, ") to (", x1, ", ", z1,
                      ") has zero length");
   }
-  return SwungSurface(straight_profile(x0, z0, x1, z1, profile_control_points),
+  return SwungSurface(straight_profile(x0, z0, x1, z1, profile_control_points, 1.0),
                       unit_circle_trajectory());
 }
 

@@ -12,6 +12,7 @@
 #include "tools/eval_command.h"
 #include "tools/fit_command.h"
 #include "tools/info_command.h"
+#include "tools/make_command.h"
 #include "tools/mesh_commands.h"
 #include "tools/run_command.h"
 #include "tools/serve_command.h"
@@ -25,6 +26,8 @@ commands:
   run [SCENE.json] [--out DIR]     run a scene (default: the built-in demo): meshes, CSV log,
                                    checkpoints, PNG preview; --resume CHECKPOINT continues
   info [SCENE.json]                models, coordinates, constant matrices, cost per step
+  make KIND OUT.json [--KEY V...]  a shape file: line, plane, box, cylinder, cone, sphere, torus,
+                                   revolve, extrude or loft (sheets and rods at rest)
   export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
   fit superquadric|surface POINTS  fit a superquadric or a D-NURBS surface to points, as JSON
@@ -64,6 +67,9 @@ int main(int argc, char** argv) {
     }
     if (command == "info") {
       return info_command(rest, std::cout);
+    }
+    if (command == "make") {
+      return make_command(rest, std::cout);
     }
     if (command == "export") {
       return export_command(rest, std::cout);

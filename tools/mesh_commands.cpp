@@ -1,8 +1,10 @@
 #include "tools/mesh_commands.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <numbers>
@@ -10,8 +12,10 @@
 #include <variant>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "dynamics/triangular/triangular_tessellation.h"
 #include "io/mesh_export.h"
+#include "io/mesh_import.h"
 #include "io/preview.h"
 #include "io/shape_file.h"
 #include "io/triangular_shape_file.h"
@@ -50,15 +54,41 @@ on stderr (the mesh is still written).
 exit codes: 0 ok, 1 bad shape file or failed export, 2 bad command line
 )";
 
-const char* const kPreviewHelp = R"(usage: dnurbs preview MESH.obj OUT.png
+const char* const kPreviewHelp = R"(usage: dnurbs preview MESH OUT.png
 
-Renders a shaded PNG of an OBJ mesh with preview_mesh.py (python3 + matplotlib; set
-DNURBS_PYTHON to choose the interpreter).
+Renders a shaded PNG of a mesh with preview_mesh.py (python3 + matplotlib; set DNURBS_PYTHON to
+choose the interpreter). MESH is OBJ, or any format the mesh import reads (STL, PLY, glTF, ...),
+converted to a temporary OBJ first.
 
 exit codes: 0 ok, 1 failure (missing mesh, no python with matplotlib), 2 bad command line
 )";
 
 namespace {
+
+// A fresh directory under the system's temporary directory, removed with everything in it when
+// the object goes.
+class ScratchDirectory {
+ public:
+  explicit ScratchDirectory(const std::string& prefix) {
+    std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw make_error(pattern, ": cannot create a temporary directory: ", std::strerror(errno));
+    }
+    path_ = pattern;
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  ScratchDirectory(ScratchDirectory&&) = delete;
+  ScratchDirectory& operator=(ScratchDirectory&&) = delete;
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 // Where preview_mesh.py may be: the source tree, beside an installed dnurbs, the install prefix
 std::vector<std::filesystem::path> preview_script_directories(const std::string& program) {
@@ -156,7 +186,16 @@ void render_preview_png(const std::string& program, const std::filesystem::path&
   }
   const std::filesystem::path script = find_preview_script(preview_script_directories(program));
   const std::string python = find_python_with_matplotlib(python_candidates());
-  render_preview(python, script, mesh, png);
+  if (lowercase_extension(mesh) == ".obj") {
+    render_preview(python, script, mesh, png);
+    return;
+  }
+  // The script reads OBJ: any other format assimp reads goes through a temporary OBJ copy
+  const std::vector<TriangleMesh> meshes = import_meshes(mesh);
+  const ScratchDirectory scratch("dnurbs-preview");
+  const std::filesystem::path obj = scratch.path() / "preview.obj";
+  export_meshes(meshes, obj);
+  render_preview(python, script, obj, png);
 }
 
 int export_command(const std::vector<std::string>& arguments, std::ostream& out) {

@@ -23,9 +23,11 @@ const char* const kRunHelp =
 Runs a scene file (docs/scene-format.md) and writes into DIR (default ./dnurbs-out):
   log.csv                   step, time, kinetic/potential/total energy, constraint violations
                             and probe positions (every output.log_every steps)
-  frames/NAME_STEP.FORMAT   meshes of every model every output.mesh_every steps
+  frames/NAME_STEP.FORMAT   meshes of every model every output.mesh_every steps (the first
+                            of output.format)
   checkpoint.json           the state every output.checkpoint_every steps and at the end
-  NAME.FORMAT               the final meshes (OBJ by default), NAME.png with output.preview
+  NAME.FORMAT               the final meshes, in every output.format (OBJ by default), and
+                            NAME.png with output.preview
   MODEL.json                final D-NURBS shapes with output.shape_files
 Every file is written to a temporary file and renamed, so a killed run leaves no partial file.
 
@@ -60,22 +62,7 @@ const char* const kDefaultSceneJson = R"json({
     {
       "name": "hat",
       "type": "dnurbs_surface",
-      "shape": {
-        "type": "nurbs_surface",
-        "degree_u": 3,
-        "degree_v": 3,
-        "knots_u": [0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1],
-        "knots_v": [0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1],
-        "control_points": [
-          [[-1.2, -1.2, 0.0], [-1.2, -0.8, 0.0], [-1.2, -0.4, 0.0], [-1.2, 0.0, 0.0], [-1.2, 0.4, 0.0], [-1.2, 0.8, 0.0], [-1.2, 1.2, 0.0]],
-          [[-0.8, -1.2, 0.0], [-0.8, -0.8, 0.0], [-0.8, -0.4, 0.0], [-0.8, 0.0, 0.0], [-0.8, 0.4, 0.0], [-0.8, 0.8, 0.0], [-0.8, 1.2, 0.0]],
-          [[-0.4, -1.2, 0.0], [-0.4, -0.8, 0.0], [-0.4, -0.4, 0.0], [-0.4, 0.0, 0.0], [-0.4, 0.4, 0.0], [-0.4, 0.8, 0.0], [-0.4, 1.2, 0.0]],
-          [[0.0, -1.2, 0.0], [0.0, -0.8, 0.0], [0.0, -0.4, 0.0], [0.0, 0.0, 0.0], [0.0, 0.4, 0.0], [0.0, 0.8, 0.0], [0.0, 1.2, 0.0]],
-          [[0.4, -1.2, 0.0], [0.4, -0.8, 0.0], [0.4, -0.4, 0.0], [0.4, 0.0, 0.0], [0.4, 0.4, 0.0], [0.4, 0.8, 0.0], [0.4, 1.2, 0.0]],
-          [[0.8, -1.2, 0.0], [0.8, -0.8, 0.0], [0.8, -0.4, 0.0], [0.8, 0.0, 0.0], [0.8, 0.4, 0.0], [0.8, 0.8, 0.0], [0.8, 1.2, 0.0]],
-          [[1.2, -1.2, 0.0], [1.2, -0.8, 0.0], [1.2, -0.4, 0.0], [1.2, 0.0, 0.0], [1.2, 0.4, 0.0], [1.2, 0.8, 0.0], [1.2, 1.2, 0.0]]
-        ]
-      },
+      "make": {"kind": "plane", "size": [2.4, 2.4], "domain": [1, 1], "control_points": [7, 7], "origin": [-1.2, -1.2, 0]},
       "material": {
         "mass_density": 1.0,
         "damping_density": 4.0,
@@ -92,35 +79,7 @@ const char* const kDefaultSceneJson = R"json({
     {
       "name": "torus",
       "type": "dnurbs_surface",
-      "shape": {
-        "type": "nurbs_surface",
-        "degree_u": 2,
-        "degree_v": 2,
-        "periodic_u": true,
-        "periodic_v": true,
-        "knots_u": [0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0],
-        "knots_v": [0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0],
-        "control_points": [
-          [[3.68, 0.0, 0.28], [3.68, 0.0, 0.56], [3.4, 0.0, 0.56], [3.12, 0.0, 0.56], [3.12, 0.0, 0.28], [3.12, 0.0, 0.0], [3.4, 0.0, 0.0], [3.68, 0.0, 0.0]],
-          [[3.68, 1.08, 0.28], [3.68, 1.08, 0.56], [3.4, 0.8, 0.56], [3.12, 0.52, 0.56], [3.12, 0.52, 0.28], [3.12, 0.52, 0.0], [3.4, 0.8, 0.0], [3.68, 1.08, 0.0]],
-          [[2.6, 1.08, 0.28], [2.6, 1.08, 0.56], [2.6, 0.8, 0.56], [2.6, 0.52, 0.56], [2.6, 0.52, 0.28], [2.6, 0.52, 0.0], [2.6, 0.8, 0.0], [2.6, 1.08, 0.0]],
-          [[1.52, 1.08, 0.28], [1.52, 1.08, 0.56], [1.8, 0.8, 0.56], [2.08, 0.52, 0.56], [2.08, 0.52, 0.28], [2.08, 0.52, 0.0], [1.8, 0.8, 0.0], [1.52, 1.08, 0.0]],
-          [[1.52, 0.0, 0.28], [1.52, 0.0, 0.56], [1.8, 0.0, 0.56], [2.08, 0.0, 0.56], [2.08, 0.0, 0.28], [2.08, 0.0, 0.0], [1.8, 0.0, 0.0], [1.52, 0.0, 0.0]],
-          [[1.52, -1.08, 0.28], [1.52, -1.08, 0.56], [1.8, -0.8, 0.56], [2.08, -0.52, 0.56], [2.08, -0.52, 0.28], [2.08, -0.52, 0.0], [1.8, -0.8, 0.0], [1.52, -1.08, 0.0]],
-          [[2.6, -1.08, 0.28], [2.6, -1.08, 0.56], [2.6, -0.8, 0.56], [2.6, -0.52, 0.56], [2.6, -0.52, 0.28], [2.6, -0.52, 0.0], [2.6, -0.8, 0.0], [2.6, -1.08, 0.0]],
-          [[3.68, -1.08, 0.28], [3.68, -1.08, 0.56], [3.4, -0.8, 0.56], [3.12, -0.52, 0.56], [3.12, -0.52, 0.28], [3.12, -0.52, 0.0], [3.4, -0.8, 0.0], [3.68, -1.08, 0.0]]
-        ],
-        "weights": [
-          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
-          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5],
-          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
-          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5],
-          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
-          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5],
-          [1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476, 1.0, 0.7071067811865476],
-          [0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5, 0.7071067811865476, 0.5]
-        ]
-      },
+      "make": {"kind": "torus", "major_radius": 0.8, "minor_radius": 0.28, "periodic": true, "translate": [2.6, 0, 0.28]},
       "material": {
         "mass_density": 1.0,
         "damping_density": 1.0
@@ -337,8 +296,8 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
     shown << "wrote " << result.frames_written << " mesh frame(s) to "
           << (options.output_directory / "frames").string() << "\n";
   }
-  if (!result.final_mesh.empty()) {
-    shown << "wrote " << result.final_mesh.string() << " (final state)\n";
+  for (const auto& mesh : result.final_meshes) {
+    shown << "wrote " << mesh.string() << " (final state)\n";
   }
   for (const auto& shape : result.shape_files) {
     shown << "wrote " << shape.string() << " (final shape)\n";

@@ -129,16 +129,22 @@ EnergyCheck EnergyBudget::after_step(const System& system, const Eigen::VectorXd
     account(EnergyDriver::kForce, f, 0.5 * (before + now).dot(dq));
   }
   // Springs: the change of energy at the mid-step state that their new target, parameter or
-  // stiffness makes (their pull on the model is inside E)
+  // stiffness makes (their pull on the model is inside E). A spring added since the last
+  // accepted state (a grab between steps) brings its whole energy at that state: the step began
+  // there with the spring already pulling, and a step that moves the point toward the target
+  // ends with less (implicit Euler: E_{n+1} <= E_n + E_spring(q_n)). At the mid-step state a
+  // stiff grab that closes most of its gap in one step was counted at a fraction of its energy,
+  // and the check stopped a sound run.
   const Eigen::VectorXd q_mid = 0.5 * (q_ + system.coordinates());
   for (int id = 0; id < system.spring_id_count(); ++id) {
     const auto old = std::find_if(springs_.begin(), springs_.end(),
                                   [id](const SpringRecord& r) { return r.id == id; });
+    const bool added = old == springs_.end();
     double work = system.has_spring(id)
                       ? spring_energy(system, system.spring_model(id),
-                                      system.spring_state(id, system.time()), q_mid)
+                                      system.spring_state(id, system.time()), added ? q_ : q_mid)
                       : 0.0;
-    if (old != springs_.end()) {
+    if (!added) {
       work -= spring_energy(system, old->model, old->state, q_mid);
     }
     if (work != 0.0) {

@@ -90,7 +90,7 @@ struct SceneDNurbsModel : SceneModelSpec {
   static std::unique_ptr<SceneModelSpec> read(const SceneReader& reader, const JsonValue& model,
                                               const std::string& path) {
     check_model_keys(reader, model, path, Spec::kType,
-                     {"shape", "shape_file", "fit", "weights", "quadrature_points",
+                     {"shape", "shape_file", "make", "fit", "weights", "quadrature_points",
                       "minimum_weight", "weight_inertia", "weight_stiffness"});
     auto spec = std::make_unique<Spec>();
     std::vector<const char*> keys = {"mass_density", "damping_density"};
@@ -111,7 +111,7 @@ struct SceneDNurbsModel : SceneModelSpec {
       spec->material.*key.field = value;
     }
     read_dnurbs_settings(reader, model, path, spec->settings);
-    spec->fit = read_fit(reader, model, path, true, {"shape", "shape_file"});
+    spec->fit = read_fit(reader, model, path, true, {"shape", "shape_file", "make"});
     if (!spec->fit) {
       (*spec).*Spec::kShape =
           read_scene_shape<Shape>(reader, model, path, spec->shape_file, Spec::kShapeType);

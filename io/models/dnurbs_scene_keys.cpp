@@ -6,6 +6,7 @@
 
 #include "io/json_messages.h"
 #include "io/scene_model_keys.h"
+#include "io/shape_recipe.h"
 
 namespace dnurbs {
 
@@ -32,12 +33,22 @@ ShapeType read_scene_shape(const SceneReader& reader, const JsonValue& model,
                            const std::string& path, std::string& shape_file, const char* type) {
   const JsonValue* inline_shape = reader.find(model, "shape");
   const JsonValue* file = reader.find(model, "shape_file");
-  if ((inline_shape == nullptr) == (file == nullptr)) {
+  const JsonValue* recipe = reader.find(model, "make");
+  if ((inline_shape != nullptr) + (file != nullptr) + (recipe != nullptr) != 1) {
     reader.fail(join_json_path(path, "shape"),
                 std::string("expected exactly one of \"shape\" (a ") + type +
-                    " in the shape format of dnurbs eval), \"shape_file\" and \"fit\"");
+                    " in the shape format of dnurbs eval), \"shape_file\", \"make\" (a shape "
+                    "recipe) and \"fit\"");
   }
   std::optional<Shape> shape;
+  if (recipe != nullptr) {
+    shape = make_shape(reader, *recipe, join_json_path(path, "make"));
+    if (!std::holds_alternative<ShapeType>(*shape)) {
+      reader.fail(join_json_path(path, "make"),
+                  std::string("expected a recipe that makes a ") + type + " for this model type");
+    }
+    return std::get<ShapeType>(*shape);
+  }
   // A marker source lets the shape parser's "<source>: <path>: ..." become one scene path
   constexpr const char* kMarker = "\x01";
   try {

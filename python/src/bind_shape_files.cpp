@@ -5,7 +5,9 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "io/checkpoint.h"
+#include "io/json_messages.h"
 #include "io/shape_file.h"
+#include "io/shape_recipe.h"
 #include "io/triangular_shape_file.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
@@ -60,6 +62,16 @@ void bind_shape_files(py::module_& module) {
       py::arg("text"), py::arg("source") = "<string>",
       "A NurbsCurve or NurbsSurface from shape JSON text; raises dnurbs.Error '<source>: <json "
       "path>: <what was expected>'.");
+  module.def(
+      "make_shape",
+      [](const std::string& recipe, const std::filesystem::path& directory) {
+        const SceneReader reader("recipe", directory);
+        return shape_object(make_shape(reader, parse_json_document(recipe, "recipe"), ""));
+      },
+      py::arg("recipe"), py::arg("directory") = std::filesystem::path("."),
+      "The shape of a shape recipe, JSON text such as '{\"kind\": \"plane\", \"size\": [3, 3]}' "
+      "(docs/scene-format.md, Generated shapes; shape file names resolve in `directory`); raises "
+      "dnurbs.Error 'recipe: <json path>: <what was expected>'.");
   module.def(
       "read_shape",
       [](const std::filesystem::path& path) { return shape_object(read_shape_file(path)); },

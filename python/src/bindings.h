@@ -22,6 +22,8 @@ void bind_nurbs_curve(py::module_& module);
 void bind_nurbs_surface(py::module_& module);
 /// The exact primitive shapes (circles, spheres, tori, surfaces of revolution).
 void bind_primitive_shapes(py::module_& module);
+/// The shape generators (Greville rods and sheets, box, cylinder, cone, revolve, extrude, loft).
+void bind_shape_generators(py::module_& module);
 /// dnurbs.TriangleMesh, export_meshes and import_meshes.
 void bind_triangle_mesh(py::module_& module);
 /// dnurbs.Scene, read_scene, parse_scene and read_checkpoint.

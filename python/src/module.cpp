@@ -16,6 +16,7 @@ PYBIND11_MODULE(_dnurbs, module) {
   bind_nurbs_curve(module);
   bind_nurbs_surface(module);
   bind_primitive_shapes(module);
+  bind_shape_generators(module);
   bind_triangle_mesh(module);
   bind_model(module);
   bind_superquadric(module);

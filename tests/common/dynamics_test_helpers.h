@@ -2,26 +2,20 @@
 // Shapes shared by the dynamics tests.
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "nurbs/knot_vector.h"
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"
+#include "nurbs/shape_generators.h"
 
 namespace dnurbs::test {
 
 /// Greville abscissae of a knot vector: placing control points there makes x(u) = u.
 inline Eigen::VectorXd greville(const KnotVector& knots) {
-  const int p = knots.degree();
-  const int n = knots.control_point_count();
-  Eigen::VectorXd result(n);
-  for (int i = 0; i < n; ++i) {
-    double sum = 0.0;
-    for (int k = 1; k <= p; ++k) {
-      sum += knots[i + k];
-    }
-    result[i] = sum / p;
-  }
-  return result;
+  const std::vector<double> abscissae = greville_abscissae(knots);
+  return Eigen::Map<const Eigen::VectorXd>(abscissae.data(),
+                                           static_cast<Eigen::Index>(abscissae.size()));
 }
 
 /// The straight curve x(u) = (u, 0, 0) on [0, 1], degree p, `spans` uniform spans.

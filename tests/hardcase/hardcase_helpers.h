@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <Eigen/Core>
@@ -13,6 +14,7 @@
 #include "nurbs/knot_vector.h"
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"
+#include "nurbs/shape_generators.h"
 
 namespace dnurbs::hardcase {
 
@@ -32,16 +34,9 @@ inline void record_result(const std::string& measure, double value, const std::s
 
 /// Greville abscissae of a knot vector: control points there make x(u) = u.
 inline Eigen::VectorXd greville(const KnotVector& knots) {
-  const int p = knots.degree();
-  Eigen::VectorXd result(knots.control_point_count());
-  for (Eigen::Index i = 0; i < result.size(); ++i) {
-    double sum = 0.0;
-    for (int k = 1; k <= p; ++k) {
-      sum += knots[static_cast<int>(i) + k];
-    }
-    result[i] = sum / p;
-  }
-  return result;
+  const std::vector<double> abscissae = greville_abscissae(knots);
+  return Eigen::Map<const Eigen::VectorXd>(abscissae.data(),
+                                           static_cast<Eigen::Index>(abscissae.size()));
 }
 
 /// The straight cubic x(u) = (u, 0, 0) on [0, 1] with `spans` uniform spans: the rest shape of

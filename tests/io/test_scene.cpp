@@ -196,7 +196,7 @@ TEST(SceneFile, ValuesAndReferencesAreParsedAsWritten) {
   EXPECT_EQ(scene.constraints[1].beta, -1.0);  // absent: beta = alpha
   EXPECT_EQ(scene.forces[1].end, std::numeric_limits<double>::infinity());
   EXPECT_EQ(scene.step_count(), 7);
-  EXPECT_EQ(scene.output.format, "ply");
+  EXPECT_EQ(scene.output.formats, std::vector<std::string>{"ply"});
 }
 
 TEST(SceneFile, DurationGivesTheStepCount) {

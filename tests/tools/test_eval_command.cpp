@@ -168,7 +168,7 @@ TEST(DnurbsCommand, HelpForProgramAndEachSubcommandExitsZero) {
   const Result help = run("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_THAT(help.out, HasSubstr("usage: dnurbs COMMAND"));
-  for (const std::string command : {"eval", "run", "export", "preview"}) {
+  for (const std::string command : {"eval", "run", "make", "export", "preview"}) {
     const Result sub = run(command + " --help");
     EXPECT_EQ(sub.exit_code, 0) << command;
     EXPECT_THAT(sub.out, HasSubstr("usage: dnurbs " + command)) << command;

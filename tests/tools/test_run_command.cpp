@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -304,6 +305,55 @@ TEST(RunCommand, HelpDescribesRunAndInfo) {
   EXPECT_EQ(info_help.exit_code, 0);
   EXPECT_THAT(info_help.out, HasSubstr("usage: dnurbs info"));
   EXPECT_THAT(run("--help").out, HasSubstr("info [SCENE.json]"));
+}
+
+// One run writes its final meshes in every listed format, and the preview renders the first
+// (here glTF binary, which the preview script cannot read: it goes through a temporary OBJ)
+TEST(RunCommand, OneRunWritesEveryListedFormatAndPreviewsTheFirst) {
+  const auto directory = fresh_directory("formats");
+  std::ofstream(directory / "sheet.json") << R"({
+    "models": [{"name": "sheet", "type": "dnurbs_surface",
+                "make": {"kind": "plane", "size": [3, 3]},
+                "material": {"damping_density": 2, "a10": 1, "a01": 1},
+                "boundary": {"clamp_border": true}}],
+    "forces": [{"type": "spring", "model": "sheet", "at": [1.5, 1.5], "stiffness": 50,
+                "target": [1.5, 1.5, 0.5]}],
+    "run": {"steps": 5},
+    "output": {"name": "sheet", "format": ["glb", "obj", "stl"], "resolution": 8,
+               "preview": true, "mesh_every": 5}})";
+  const auto out = directory / "out";
+  const Result result =
+      run("run " + (directory / "sheet.json").string() + " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const std::string format : {"glb", "obj", "stl"}) {
+    const std::vector<TriangleMesh> meshes = import_meshes(out / ("sheet." + format));
+    ASSERT_EQ(meshes.size(), 1U) << format;
+    EXPECT_EQ(meshes[0].triangle_count(), 2 * 8 * 8) << format;
+    EXPECT_THAT(result.out, HasSubstr("sheet." + format + " (final state)"));
+  }
+  // The same final surface in every file: every OBJ vertex is a glTF vertex (the OBJ writer
+  // orders them by first use; glTF stores single precision, glTF's Y-up undone on import)
+  const Eigen::MatrixX3d obj = import_meshes(out / "sheet.obj")[0].vertices;
+  const Eigen::MatrixX3d glb = import_meshes(out / "sheet.glb")[0].vertices;
+  ASSERT_EQ(obj.rows(), glb.rows());
+  double farthest = 0.0;
+  for (Eigen::Index r = 0; r < obj.rows(); ++r) {
+    farthest = std::max(farthest, (glb.rowwise() - obj.row(r)).rowwise().norm().minCoeff());
+  }
+  EXPECT_LT(farthest, 1e-6);
+  EXPECT_GT(obj.col(2).maxCoeff(), 0.01);  // lifted by the spring
+  // Frames in the first format only
+  EXPECT_TRUE(std::filesystem::exists(out / "frames" / "sheet_000005.glb"));
+  EXPECT_FALSE(std::filesystem::exists(out / "frames" / "sheet_000005.obj"));
+  const std::string png = read_text(out / "sheet.png");
+  ASSERT_GT(png.size(), 1000U);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // dnurbs preview reads any mesh format too
+  const Result preview =
+      run("preview " + (out / "sheet.stl").string() + " " + (directory / "stl.png").string());
+  ASSERT_EQ(preview.exit_code, 0) << preview.err;
+  EXPECT_EQ(read_text(directory / "stl.png").substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  std::filesystem::remove_all(directory);
 }
 
 }  // namespace

@@ -141,8 +141,16 @@ def f(s): s["probes"][0]["name"] = "\u001b[2Jcleared"
 case("probe_name_with_terminal_control", f, "probes[0].name: expected a name of", 'got string "\\x1b[2Jcleared"')
 def f(s): s["output"] = {"format": "fbx"}
 case("unknown_mesh_format", f, "output.format: expected one of obj, stl, ply, gltf, glb")
-def f(s): s["output"] = {"format": "stl", "preview": True}
-case("preview_of_stl", f, "output.preview: expected false unless output.format is \"obj\"")
+def f(s): s["output"] = {"format": ["obj", "stl", "obj"]}
+case("duplicate_mesh_format", f, "output.format[2]: format \"obj\" listed twice")
+def f(s): s["output"] = {"format": []}
+case("empty_mesh_formats", f, "output.format: expected a format or a non-empty array of formats")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["make"] = {"kind": "plane", "size": [1, -1]}
+case("made_plane_negative_size", f, "models[0].make.size[1]: expected a number > 0, got -1")
+def f(s): del s["models"][0]["shape"]; s["models"][0]["make"] = {"kind": "teapot"}
+case("made_shape_unknown_kind", f, "models[0].make.kind: expected one of line, plane, box")
+def f(s): s["models"][0]["make"] = {"kind": "plane"}
+case("made_and_given_shape", f, "models[0].shape: expected exactly one of")
 def f(s): s["output"] = {"resolution": 2}
 case("resolution_too_small", f, "output.resolution: expected an integer in 3..1024")
 def f(s): s["models"].append({"type": "superquadric", "shape": {"e1": 5}})
