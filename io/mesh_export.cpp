@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "io/atomic_write.h"
+#include "io/gltf_extensions.h"
 #include "io/mesh_up_axis.h"
 #include "io/output_path.h"
 
@@ -301,7 +302,8 @@ std::string assimp_format_id(MeshFormat format) {
   throw make_error("unknown mesh format ", static_cast<int>(format));
 }
 
-void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesystem::path& path) {
+void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesystem::path& path,
+                   UpAxis up) {
   const MeshFormat format = mesh_format_from_path(path);
   if (meshes.empty()) {
     throw make_error(path.string(), ": no meshes to export");
@@ -309,8 +311,8 @@ void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesyste
   for (size_t i = 0; i < meshes.size(); ++i) {
     check_mesh(meshes[i], i);
   }
-  const std::unique_ptr<aiScene> scene =
-      build_scene(meshes, format == MeshFormat::kGltf || format == MeshFormat::kGlb);
+  const std::unique_ptr<aiScene> scene = build_scene(
+      meshes, format == MeshFormat::kGltf || format == MeshFormat::kGlb || up == UpAxis::kY);
 
   Assimp::Exporter exporter;
   auto* file_system = new TemporaryFileSystem;
@@ -326,6 +328,20 @@ void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesyste
     const std::string reason = exporter.GetErrorString();
     throw make_error(path.string(), ": assimp could not export the meshes",
                      reason.empty() ? std::string() : ": " + reason);
+  }
+  // assimp lists glTF extensions the document does not use; keep only the used ones
+  if (format == MeshFormat::kGltf || format == MeshFormat::kGlb) {
+    for (const auto& [temporary, target] : file_system->files()) {
+      const std::string extension = lowercase_extension(target);
+      if (extension == ".gltf" || extension == ".glb") {
+        try {
+          drop_unused_gltf_extensions(temporary, format == MeshFormat::kGlb);
+        } catch (const Error&) {
+          remove_temporaries(*file_system);
+          throw;
+        }
+      }
+    }
   }
   // Publish every written file by renaming it; on failure remove the rest
   for (const auto& [temporary, target] : file_system->files()) {

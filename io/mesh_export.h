@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "io/mesh_up_axis.h"
 #include "surface/triangle_mesh.h"
 
 namespace dnurbs {
@@ -34,7 +35,9 @@ std::string assimp_format_id(MeshFormat format);
 /// export has succeeded; on failure the temporary files are removed.
 /// Throws Error for an unknown extension, an empty mesh list, a mesh with an index out of range
 /// or mismatched normal/uv rows, and when assimp fails (with assimp's message).
-void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesystem::path& path);
+/// `up`: the up axis of OBJ, STL and PLY files (io/mesh_up_axis.h); glTF is always Y-up.
+void export_meshes(const std::vector<TriangleMesh>& meshes, const std::filesystem::path& path,
+                   UpAxis up = UpAxis::kZ);
 
 /// export_meshes of one mesh.
 void export_mesh(const TriangleMesh& mesh, const std::filesystem::path& path);

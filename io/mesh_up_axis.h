@@ -5,7 +5,8 @@
 // and normals turned by z_up_to_y_up, so that viewers and other tools show the scene upright,
 // and import_meshes turns a glTF file's back, so that a round trip is the identity and a glTF
 // made elsewhere comes in Z-up. OBJ, STL and PLY declare no axis and are written as the model
-// is. Lengths are written as they are: a scene unit is a glTF metre.
+// is, or Y-up when asked (UpAxis::kY: output.up_axis, dnurbs export --up-axis). Lengths are written
+// as they are: a scene unit is a glTF metre.
 
 #include <filesystem>
 
@@ -14,6 +15,10 @@
 #include "surface/triangle_mesh.h"
 
 namespace dnurbs {
+
+/// The up axis of a file that declares none (OBJ, STL, PLY): Z as dnurbs (the default), or Y
+/// for tools that expect it (vertices and normals turned by z_up_to_y_up, as glTF's are).
+enum class UpAxis { kZ, kY };
 
 /// True for the Y-up mesh formats, by the path's extension (case-insensitive): .gltf and .glb.
 bool is_y_up_mesh_file(const std::filesystem::path& path);

@@ -49,17 +49,18 @@ CommandResult run_command(const std::string& command) {
 
 }  // namespace
 
-std::filesystem::path find_preview_script(const std::vector<std::filesystem::path>& directories) {
+std::filesystem::path find_preview_script(const std::vector<std::filesystem::path>& directories,
+                                          const char* name) {
   std::string searched;
   for (const auto& directory : directories) {
-    std::filesystem::path script = directory / kPreviewScriptName;
+    std::filesystem::path script = directory / name;
     std::error_code error;
     if (std::filesystem::is_regular_file(script, error)) {
       return script;
     }
     searched += (searched.empty() ? "" : ", ") + directory.string();
   }
-  throw make_error("cannot find ", kPreviewScriptName, " (searched: ", searched, ")");
+  throw make_error("cannot find ", name, " (searched: ", searched, ")");
 }
 
 std::string find_python_with_matplotlib(const std::vector<std::string>& candidates) {

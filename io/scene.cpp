@@ -211,7 +211,7 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   const std::string path = "output";
   reader.object(output, path,
                 {"mesh_every", "format", "resolution", "final_mesh", "preview", "log_every",
-                 "checkpoint_every", "name", "shape_files"});
+                 "checkpoint_every", "name", "shape_files", "up_axis"});
   reader.integer_key(output, path, "mesh_every", o.mesh_every, 0, 100000000);
   if (const JsonValue* format = reader.find(output, "format")) {
     const std::initializer_list<const char*> formats = {"obj", "stl", "ply", "gltf", "glb"};
@@ -232,6 +232,9 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
     } else {
       o.formats = {reader.choice(*format, "output.format", formats)};
     }
+  }
+  if (const JsonValue* up = reader.find(output, "up_axis")) {
+    o.up_axis = reader.choice(*up, "output.up_axis", {"z", "y"});
   }
   reader.integer_key(output, path, "resolution", o.resolution, 3, 1024);
   reader.boolean_key(output, path, "final_mesh", o.final_mesh);

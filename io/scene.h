@@ -88,11 +88,14 @@ struct SceneProbe {
 };
 
 struct SceneOutput {
-  int mesh_every = 0;          ///< a mesh every N steps (0: none but the final one)
+  int mesh_every = 0;  ///< a mesh every N steps (0: none but the final one)
   /// Mesh formats, distinct, of obj, stl, ply, gltf, glb: the final mesh is written in each,
   /// frames in the first; the preview renders the first.
   std::vector<std::string> formats = {"obj"};
-  int resolution = 24;         ///< mesh segments per direction
+  /// The up axis of OBJ, STL and PLY meshes: "z" (dnurbs' own) or "y" (io/mesh_up_axis.h); glTF
+  /// is always Y-up.
+  std::string up_axis = "z";
+  int resolution = 24;  ///< mesh segments per direction
   bool final_mesh = true;
   bool preview = false;        ///< PNG of the final mesh (the tool renders it)
   int log_every = 1;           ///< CSV rows every N steps (and the last step)

@@ -43,6 +43,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
   const SceneOutput& output = scene.output;
   const int resolution = options.resolution > 0 ? options.resolution : output.resolution;
   const std::filesystem::path& directory = options.output_directory;
+  const UpAxis up = output.up_axis == "y" ? UpAxis::kY : UpAxis::kZ;
   create_output_directory(directory);
   // Temporaries of a killed earlier run in this folder (io/atomic_write.h)
   remove_stale_temporaries(directory);
@@ -66,7 +67,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
   } else {
     log.add_row(0, simulation.log_row(simulation.sample()));
     if (output.mesh_every > 0) {
-      export_meshes(simulation.meshes(resolution), frame_path(directory, output, 0));
+      export_meshes(simulation.meshes(resolution), frame_path(directory, output, 0), up);
       ++result.frames_written;
     }
   }
@@ -82,7 +83,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
       result.final_meshes.clear();
       for (const std::string& format : output.formats) {
         result.final_meshes.push_back(output_file_path(directory, output.name + "." + format));
-        export_meshes(meshes, result.final_meshes.back());
+        export_meshes(meshes, result.final_meshes.back(), up);
       }
       result.final_mesh = result.final_meshes.front();
     }
@@ -127,7 +128,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
       log.add_row(step, simulation.log_row(simulation.sample()));
     }
     if (output.mesh_every > 0 && step % output.mesh_every == 0) {
-      export_meshes(simulation.meshes(resolution), frame_path(directory, output, step));
+      export_meshes(simulation.meshes(resolution), frame_path(directory, output, step), up);
       ++result.frames_written;
     }
     if (output.checkpoint_every > 0 && step % output.checkpoint_every == 0 &&

@@ -183,7 +183,7 @@ NurbsCurve straight_profile(double x0, double z0, double x1, double z1, int coun
 
 NurbsSurface greville_plane(const Eigen::Vector2d& size, const Eigen::Vector2i& control_points,
                             const Eigen::Vector2i& degree, const Eigen::Vector3d& origin,
-                            std::optional<Eigen::Vector2d> domain) {
+                            const std::optional<Eigen::Vector2d>& domain) {
   if (!origin.allFinite()) {
     throw make_error("plane origin must be finite");
   }

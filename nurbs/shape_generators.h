@@ -53,7 +53,7 @@ NurbsCurve straight_profile(double x0, double z0, double x1, double z1, int coun
 NurbsSurface greville_plane(const Eigen::Vector2d& size, const Eigen::Vector2i& control_points,
                             const Eigen::Vector2i& degree,
                             const Eigen::Vector3d& origin = Eigen::Vector3d::Zero(),
-                            std::optional<Eigen::Vector2d> domain = std::nullopt);
+                            const std::optional<Eigen::Vector2d>& domain = std::nullopt);
 
 /// The closed surface of an axis-aligned box of edge lengths `size` (all > 0) standing on the
 /// plane z = 0, centred on the z axis: bilinear, 4 x 5 control points. u runs from the centre of

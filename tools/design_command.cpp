@@ -124,7 +124,8 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out,
     }
   }
   const auto mesh_path = output_file_path(directory, mesh_name);
-  export_meshes(simulation.meshes(resolution), mesh_path);
+  export_meshes(simulation.meshes(resolution), mesh_path,
+                simulation.scene().output.up_axis == "y" ? UpAxis::kY : UpAxis::kZ);
   written.push_back(mesh_path);
 
   out << "{\n  \"algorithm\": " << json_string(design.algorithm)

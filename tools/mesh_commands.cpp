@@ -27,7 +27,7 @@ namespace dnurbs::tools {
 
 const char* const kExportHelp =
     R"(usage: dnurbs export SHAPE.json MESH [--resolution N | --max-error E | --max-angle DEG]
-                     [--compare] [--radius R]
+                     [--compare] [--radius R] [--up-axis z|y]
 
 Tessellates the curve or surface of a shape file and writes a triangle mesh. The format follows
 MESH's extension: .obj (default choice; with a .mtl), .stl, .ply, .gltf (with a .bin) or .glb.
@@ -46,6 +46,8 @@ options:
   --max-angle DEG     surfaces: adaptive mesh by the normals criterion, 0 < DEG <= 180
   --compare           with --max-error: also report the coarsest uniform grid meeting E
   --radius R          tube radius for curves (default 1% of the control polygon's diagonal)
+  --up-axis z|y       the up axis of .obj/.stl/.ply (default z, as dnurbs; y turns (x, y, z)
+                      into (x, z, -y)); .gltf/.glb are always Y-up, as glTF 2.0 requires
   -h, --help          this help
 
 Adaptive meshes stop at 16 bisections below a 4 x 4 base grid; a bound not met there is reported
@@ -198,6 +200,13 @@ void render_preview_png(const std::string& program, const std::filesystem::path&
   render_preview(python, script, obj, png);
 }
 
+void render_energy_png(const std::string& program, const std::filesystem::path& log,
+                       const std::filesystem::path& png) {
+  const std::filesystem::path script =
+      find_preview_script(preview_script_directories(program), kEnergyPlotScriptName);
+  render_preview(find_python_with_matplotlib(python_candidates()), script, log, png);
+}
+
 int export_command(const std::vector<std::string>& arguments, std::ostream& out) {
   if (wants_help(arguments)) {
     out << kExportHelp;
@@ -209,10 +218,17 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   double max_error = 0.0;
   double max_angle_degrees = 0.0;
   bool compare = false;
+  UpAxis up = UpAxis::kZ;
   for (size_t i = 0; i < arguments.size(); ++i) {
     const std::string& argument = arguments[i];
     if (argument == "--resolution") {
       resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 4096);
+    } else if (argument == "--up-axis") {
+      const std::string& axis = flag_value(arguments, i);
+      if (axis != "z" && axis != "y") {
+        throw UsageError("--up-axis: expected z or y, got " + axis);
+      }
+      up = axis == "y" ? UpAxis::kY : UpAxis::kZ;
     } else if (argument == "--radius") {
       radius = parse_double(flag_value(arguments, i), "--radius");
       if (!(radius > 0.0)) {
@@ -262,7 +278,7 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
     mesh = export_shape_mesh(read_shape_file(files[0]), resolution, radius, max_error,
                              max_angle_degrees, compare, files[0], out);
   }
-  export_mesh(mesh, mesh_path);
+  export_meshes({mesh}, mesh_path, up);
   out << "wrote " << mesh_path.string() << " (" << mesh.vertex_count() << " vertices, "
       << mesh.triangle_count() << " triangles)\n";
   return kExitOk;

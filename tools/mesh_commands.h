@@ -20,6 +20,11 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
 void render_preview_png(const std::string& program, const std::filesystem::path& mesh,
                         const std::filesystem::path& png);
 
+/// Plots the kinetic, elastic and total energies of a run's log.csv over time into a PNG with
+/// plot_energy.py (found like preview_mesh.py). Throws Error.
+void render_energy_png(const std::string& program, const std::filesystem::path& log,
+                       const std::filesystem::path& png);
+
 int preview_command(const std::vector<std::string>& arguments, const std::string& program,
                     std::ostream& out);
 

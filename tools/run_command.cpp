@@ -27,7 +27,8 @@ Runs a scene file (docs/scene-format.md) and writes into DIR (default ./dnurbs-o
                             of output.format)
   checkpoint.json           the state every output.checkpoint_every steps and at the end
   NAME.FORMAT               the final meshes, in every output.format (OBJ by default), and
-                            NAME.png with output.preview
+                            with output.preview NAME.png and energy.png (the energies of
+                            log.csv over time)
   MODEL.json                final D-NURBS shapes with output.shape_files
 Every file is written to a temporary file and renamed, so a killed run leaves no partial file.
 
@@ -36,7 +37,8 @@ D-NURBS sheet with a clamped border sculpted into a hat by springs pulling its c
 time (damping, Newmark), a D-NURBS torus inflated by a pressure pulse, and a superquadric
 pendulum (a link held at a pivot, a rounded cube hanging from it by a ball joint) swinging under
 gravity; it writes OBJ frames, log.csv (with the joints' max_violation), the final mesh demo.obj,
-its preview demo.png and the final shapes hat.json and torus.json.
+its preview demo.png, the energy plot energy.png and the final shapes hat.json and
+torus.json.
 
 A step that diverges (a non-finite state or an energy above integrator.max_energy) stops the
 run: the last good state is written (checkpoint.json and the final mesh) and the exit code is 1.
@@ -48,7 +50,7 @@ options:
   --resolution N        mesh segments per direction, 3..1024 (overrides output.resolution)
   --stop-after N        stop after N steps in total without writing the final state (as if
                         killed there; for testing --resume)
-  --no-preview          skip the PNG preview
+  --no-preview          skip the PNG previews (NAME.png and energy.png)
   --quiet               print nothing but errors (no progress, no list of files written)
   -h, --help            this help
 
@@ -320,6 +322,9 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
     png.replace_extension(".png");
     render_preview_png(program, result.final_mesh, png);
     shown << "wrote " << png.string() << " (shaded preview of the final frame)\n";
+    const std::filesystem::path energy = result.log.parent_path() / "energy.png";
+    render_energy_png(program, result.log, energy);
+    shown << "wrote " << energy.string() << " (energies over time)\n";
   }
   return kExitOk;
 }

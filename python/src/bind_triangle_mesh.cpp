@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "core/error.h"
 #include "io/mesh_export.h"
 #include "io/mesh_import.h"
 #include "python/src/bindings.h"
@@ -76,11 +77,21 @@ void bind_triangle_mesh(py::module_& module) {
   add_matrix_property(mesh, "uv", &TriangleMesh::uv, "Surface parameters, (V, 2) or (0, 2).");
   add_matrix_property(mesh, "triangles", &TriangleMesh::triangles, "Vertex indices, (F, 3) int32.");
 
-  module.def("export_meshes", &export_meshes, py::arg("meshes"), py::arg("path"),
-             "Writes a list of TriangleMesh into one file through assimp, the format chosen by "
-             "the extension (.obj, .stl, .ply, .gltf, .glb); atomic (temporary files renamed). "
-             "Raises dnurbs.Error for an unknown extension, an empty list, an index out of "
-             "range or an assimp failure.");
+  module.def(
+      "export_meshes",
+      [](const std::vector<TriangleMesh>& meshes, const std::filesystem::path& path,
+         const std::string& up_axis) {
+        if (up_axis != "z" && up_axis != "y") {
+          throw make_error("up_axis must be \"z\" or \"y\", got \"", up_axis, "\"");
+        }
+        export_meshes(meshes, path, up_axis == "y" ? UpAxis::kY : UpAxis::kZ);
+      },
+      py::arg("meshes"), py::arg("path"), py::arg("up_axis") = "z",
+      "Writes a list of TriangleMesh into one file through assimp, the format chosen by the "
+      "extension (.obj, .stl, .ply, .gltf, .glb); atomic (temporary files renamed). glTF is "
+      "written Y-up; `up_axis` 'y' turns OBJ, STL and PLY Y-up too ((x, y, z) -> (x, z, -y)). "
+      "Raises dnurbs.Error for an unknown extension, an empty list, an index out of range or an "
+      "assimp failure.");
   module.def("import_meshes", &import_meshes, py::arg("path"), py::arg("cpu_seconds") = 0,
              "Reads the meshes of a file through assimp: a list of TriangleMesh. assimp runs in "
              "a child process with at most cpu_seconds of CPU time (0: 10 s plus 1 s per MB), so "

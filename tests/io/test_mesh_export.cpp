@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -14,7 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/gltf_extensions.h"
 #include "io/mesh_import.h"
+#include "io/mesh_up_axis.h"
 #include "nurbs/primitive_shapes.h"
 #include "surface/tessellation.h"
 #include "tests/common/child_process.h"
@@ -151,6 +155,73 @@ TEST(MeshExport, GltfIsWrittenYUpAndReadBackZUp) {
     ASSERT_EQ(meshes.size(), 1U) << name;
     EXPECT_EQ(meshes[0].vertices, triangle.vertices) << name;
   }
+  std::filesystem::remove_all(directory);
+}
+
+// UpAxis::kY turns OBJ, STL and PLY Y-up like glTF; glTF is Y-up whatever the setting
+TEST(MeshExport, UpAxisYTurnsTheFormatsThatDeclareNoAxis) {
+  TriangleMesh triangle;
+  triangle.name = "tri";
+  triangle.vertices.resize(3, 3);
+  triangle.vertices << 0, 0, 0, 1, 0, 0, 0, 2, 1;
+  triangle.triangles.resize(1, 3);
+  triangle.triangles << 0, 1, 2;
+  const Eigen::MatrixX3d turned = triangle.vertices * z_up_to_y_up().transpose();
+  const auto directory = fresh_directory("up_axis");
+  for (const char* name : {"tri.obj", "tri.stl", "tri.ply"}) {
+    export_meshes({triangle}, directory / name, UpAxis::kY);
+    EXPECT_EQ(import_meshes(directory / name).at(0).vertices, turned) << name;
+    export_meshes({triangle}, directory / name, UpAxis::kZ);
+    EXPECT_EQ(import_meshes(directory / name).at(0).vertices, triangle.vertices) << name;
+  }
+  export_meshes({triangle}, directory / "y.gltf", UpAxis::kY);
+  export_meshes({triangle}, directory / "z.gltf", UpAxis::kZ);
+  std::ifstream y(directory / "y.gltf");
+  std::ifstream z(directory / "z.gltf");
+  EXPECT_EQ(Json::parse(y).at("accessors"), Json::parse(z).at("accessors"));  // the same bounds
+  EXPECT_EQ(import_meshes(directory / "y.gltf").at(0).vertices, triangle.vertices);
+  std::filesystem::remove_all(directory);
+}
+
+// The glTF documents list no extension they do not use (assimp lists KHR_materials_volume and
+// FB_ngon_encoding whatever the scene); the binary file's header and chunk lengths stay valid
+TEST(MeshExport, GltfListsOnlyTheExtensionsItUses) {
+  TriangleMesh triangle;
+  triangle.name = "tri";
+  triangle.vertices.resize(3, 3);
+  triangle.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  triangle.triangles.resize(1, 3);
+  triangle.triangles << 0, 1, 2;
+  const auto directory = fresh_directory("extensions");
+  export_mesh(triangle, directory / "tri.gltf");
+  export_mesh(triangle, directory / "tri.glb");
+  const Json gltf = Json::parse(std::ifstream(directory / "tri.gltf"));
+  std::ifstream in(directory / "tri.glb", std::ios::binary);
+  const std::string glb{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_GT(glb.size(), 20U);
+  const auto u32 = [&](size_t at) {
+    std::uint32_t value = 0;
+    std::memcpy(&value, glb.data() + at, 4);
+    return static_cast<size_t>(value);
+  };
+  EXPECT_EQ(u32(8), glb.size());  // the header's total length
+  EXPECT_EQ(u32(12) % 4, 0U);     // the JSON chunk is padded to 4 bytes
+  const Json binary = Json::parse(glb.substr(20, u32(12)));
+  for (const Json* document : {&gltf, &binary}) {
+    EXPECT_FALSE(document->contains("extensionsUsed")) << document->dump().substr(0, 200);
+    EXPECT_FALSE(document->contains("extensionsRequired"));
+    EXPECT_EQ(document->at("asset").at("version"), "2.0");
+  }
+  for (const char* name : {"tri.gltf", "tri.glb"}) {
+    EXPECT_EQ(import_meshes(directory / name).at(0).vertices, triangle.vertices) << name;
+  }
+  // Used extensions stay: the rule on a document that uses one of the two it lists
+  Json document = Json::parse(R"({"extensionsUsed": ["KHR_a", "KHR_b"],
+                                  "extensionsRequired": ["KHR_b"],
+                                  "materials": [{"extensions": {"KHR_a": {}}}]})");
+  drop_unused_gltf_extensions(document);
+  EXPECT_EQ(document.at("extensionsUsed"), Json::parse(R"(["KHR_a"])"));
+  EXPECT_FALSE(document.contains("extensionsRequired"));
   std::filesystem::remove_all(directory);
 }
 

@@ -207,6 +207,9 @@ TEST(RunCommand, DefaultDemoWritesObjAndPng) {
   const std::string png = read_text(directory / "demo.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // And the energies of its log over time next to log.csv
+  EXPECT_THAT(result.out, HasSubstr("energy.png (energies over time)"));
+  EXPECT_EQ(read_text(directory / "energy.png").substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   // The shape files it wrote read back
   EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "torus.json")));
   EXPECT_TRUE(std::holds_alternative<NurbsSurface>(read_shape_file(directory / "hat.json")));

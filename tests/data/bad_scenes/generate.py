@@ -143,6 +143,8 @@ def f(s): s["output"] = {"format": "fbx"}
 case("unknown_mesh_format", f, "output.format: expected one of obj, stl, ply, gltf, glb")
 def f(s): s["output"] = {"format": ["obj", "stl", "obj"]}
 case("duplicate_mesh_format", f, "output.format[2]: format \"obj\" listed twice")
+def f(s): s["output"] = {"up_axis": "x"}
+case("unknown_up_axis", f, "output.up_axis: expected one of z, y")
 def f(s): s["output"] = {"format": []}
 case("empty_mesh_formats", f, "output.format: expected a format or a non-empty array of formats")
 def f(s): del s["models"][0]["shape"]; s["models"][0]["make"] = {"kind": "plane", "size": [1, -1]}
