@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+
+#include "core/error.h"
 
 namespace dnurbs::tools {
 
@@ -59,39 +62,30 @@ std::vector<double> parse_doubles(const std::string& text, const std::string& wh
   }
 }
 
-std::string json_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"':
-        quoted += "\\\"";
-        break;
-      case '\\':
-        quoted += "\\\\";
-        break;
-      case '\n':
-        quoted += "\\n";
-        break;
-      case '\t':
-        quoted += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char escape[8];
-          std::snprintf(escape, sizeof(escape), "\\u%04x", static_cast<unsigned>(c));
-          quoted += escape;
-        } else {
-          quoted += c;
-        }
+namespace {
+
+// Throws Error naming the JSON path of the first non-finite number under `value`.
+void check_finite(const nlohmann::ordered_json& value, const std::string& path) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
+    throw make_error(path, " is ", value.get<double>(), ", not a finite number (JSON has none)");
+  }
+  if (value.is_object()) {
+    for (const auto& [key, child] : value.items()) {
+      check_finite(child, path.empty() ? key : path + "." + key);
+    }
+  } else if (value.is_array()) {
+    for (size_t i = 0; i < value.size(); ++i) {
+      check_finite(value[i], path + "[" + std::to_string(i) + "]");
     }
   }
-  return quoted + "\"";
 }
 
-std::string json_double(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
+}  // namespace
+
+void print_json(std::ostream& out, const nlohmann::ordered_json& document) {
+  check_finite(document, "");
+  // Bytes that are not UTF-8 (a file name) become U+FFFD rather than an exception
+  out << document.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
 }
 
 }  // namespace dnurbs::tools

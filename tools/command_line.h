@@ -1,9 +1,12 @@
 #pragma once
 // Small helpers shared by the dnurbs subcommands: usage errors and argument parsing.
 
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace dnurbs::tools {
 
@@ -33,10 +36,9 @@ int parse_int(const std::string& text, const std::string& what, int minimum, int
 /// Comma-separated finite doubles ("0.3,0.7"); throws UsageError naming `what` otherwise.
 std::vector<double> parse_doubles(const std::string& text, const std::string& what);
 
-/// The text as a JSON string literal (quotes and escapes).
-std::string json_string(const std::string& text);
-
-/// The number with 17 significant digits (%.17g), so that it reads back exactly.
-std::string json_double(double value);
+/// Prints a JSON document (the output of eval, fit and design) with an indent of 2 and a final
+/// line break; numbers are the shortest decimals that read back as the same doubles. Throws
+/// Error for a non-finite number (JSON has none), naming its key.
+void print_json(std::ostream& out, const nlohmann::ordered_json& document);
 
 }  // namespace dnurbs::tools

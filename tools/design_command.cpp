@@ -6,6 +6,8 @@
 #include <optional>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/progress_report.h"
 #include "design/energy_minimization.h"
 #include "io/mesh_export.h"
@@ -128,16 +130,17 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out,
                 simulation.scene().output.up_axis == "y" ? UpAxis::kY : UpAxis::kZ);
   written.push_back(mesh_path);
 
-  out << "{\n  \"algorithm\": " << json_string(design.algorithm)
-      << ",\n  \"iterations\": " << result.iterations
-      << ",\n  \"energy\": " << json_double(result.energy)
-      << ",\n  \"constraint_violation\": " << json_double(result.constraint_violation)
-      << ",\n  \"status\": " << result.status
-      << ",\n  \"status_name\": " << json_string(result.status_name) << ",\n  \"files\": [";
-  for (size_t i = 0; i < written.size(); ++i) {
-    out << (i > 0 ? ", " : "") << json_string(written[i].string());
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  for (const auto& file : written) {
+    files.push_back(file.string());
   }
-  out << "]\n}\n";
+  print_json(out, {{"algorithm", design.algorithm},
+                   {"iterations", result.iterations},
+                   {"energy", result.energy},
+                   {"constraint_violation", result.constraint_violation},
+                   {"status", result.status},
+                   {"status_name", result.status_name},
+                   {"files", std::move(files)}});
   return result.converged() ? kExitOk : kExitError;
 }
 

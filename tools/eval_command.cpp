@@ -1,7 +1,10 @@
 #include "tools/eval_command.h"
 
-#include <sstream>
+#include <string>
+#include <utility>
 #include <variant>
+
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "io/shape_file.h"
@@ -13,7 +16,8 @@ const char* const kEvalHelp = R"(usage: dnurbs eval SHAPE.json --at U [--at U ..
        dnurbs eval SHAPE.json --at U,V [--at U,V ...] [--derivatives N]
 
 Evaluates the curve or surface of a shape file at each --at parameter (a curve takes U, a
-surface U,V) and prints JSON with every number to 17 significant digits:
+surface U,V) and prints JSON, every number the shortest decimal that reads back as the same
+double:
 
   {"file": "SHAPE.json", "type": "nurbs_curve", "derivative_order": N,
    "evaluations": [{"u": U, "point": [x, y, z],
@@ -37,24 +41,20 @@ exit codes: 0 ok, 1 bad shape file or parameter, 2 bad command line
 
 namespace {
 
-// Text built through streams: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
 // The output is always valid JSON: a non-finite value (the shape's coordinates or weights
 // overflow a double at that parameter) is an Error naming the place and the quantity.
-std::string json_vector(const Eigen::Vector3d& v, const std::string& file, const std::string& flag,
-                        const std::string& quantity) {
+nlohmann::ordered_json json_vector(const Eigen::Vector3d& v, const std::string& file,
+                                   const std::string& flag, const std::string& quantity) {
   if (!v.allFinite()) {
     throw make_error(file, ": --at ", flag, ": ", quantity, " = (", v.x(), ", ", v.y(), ", ", v.z(),
                      ") is not finite (the shape's coordinates or weights overflow a double "
                      "there)");
   }
-  std::ostringstream text;
-  text << '[' << json_double(v.x()) << ", " << json_double(v.y()) << ", " << json_double(v.z())
-       << ']';
-  return text.str();
+  return {v.x(), v.y(), v.z()};
 }
 
-std::string evaluate(const NurbsCurve& curve, const std::vector<double>& at, int order,
-                     const std::string& file, const std::string& flag) {
+nlohmann::ordered_json evaluate(const NurbsCurve& curve, const std::vector<double>& at, int order,
+                                const std::string& file, const std::string& flag) {
   if (at.size() != 1) {
     throw make_error(file, ": --at ", flag, ": a curve takes one parameter u, got ", at.size());
   }
@@ -64,21 +64,18 @@ std::string evaluate(const NurbsCurve& curve, const std::vector<double>& at, int
   } catch (const Error& error) {
     throw make_error(file, ": --at ", flag, ": ", error.what());
   }
-  std::ostringstream text;
-  text << "    {\"u\": " << json_double(at[0])
-       << ", \"point\": " << json_vector(derivatives.row(0).transpose(), file, flag, "the point")
-       << ",\n     \"derivatives\": [";
+  nlohmann::ordered_json values = nlohmann::ordered_json::array();
   for (int k = 0; k <= order; ++k) {
-    text << (k ? ", " : "")
-         << json_vector(derivatives.row(k).transpose(), file, flag,
-                        "the derivative of order " + std::to_string(k));
+    values.push_back(json_vector(derivatives.row(k).transpose(), file, flag,
+                                 "the derivative of order " + std::to_string(k)));
   }
-  text << "]}";
-  return text.str();
+  return {{"u", at[0]},
+          {"point", json_vector(derivatives.row(0).transpose(), file, flag, "the point")},
+          {"derivatives", std::move(values)}};
 }
 
-std::string evaluate(const NurbsSurface& surface, const std::vector<double>& at, int order,
-                     const std::string& file, const std::string& flag) {
+nlohmann::ordered_json evaluate(const NurbsSurface& surface, const std::vector<double>& at,
+                                int order, const std::string& file, const std::string& flag) {
   if (at.size() != 2) {
     throw make_error(file, ": --at ", flag, ": a surface takes two parameters u,v, got ",
                      at.size());
@@ -89,24 +86,21 @@ std::string evaluate(const NurbsSurface& surface, const std::vector<double>& at,
   } catch (const Error& error) {
     throw make_error(file, ": --at ", flag, ": ", error.what());
   }
-  std::ostringstream text;
-  text << "    {\"u\": " << json_double(at[0]) << ", \"v\": " << json_double(at[1])
-       << ", \"point\": " << json_vector(derivatives(0, 0), file, flag, "the point")
-       << ",\n     \"derivatives\": {";
-  bool first = true;
+  // Keys in total order, u first (an ordered_json keeps them as inserted)
+  nlohmann::ordered_json values = nlohmann::ordered_json::object();
   for (int total = 0; total <= order; ++total) {
     for (int k = total; k >= 0; --k) {
       const int l = total - k;
       std::string name = "S";
       name.append(static_cast<size_t>(k), 'u');
       name.append(static_cast<size_t>(l), 'v');
-      text << (first ? "" : ", ") << '"' << name
-           << "\": " << json_vector(derivatives(k, l), file, flag, name);
-      first = false;
+      values[name] = json_vector(derivatives(k, l), file, flag, name);
     }
   }
-  text << "}}";
-  return text.str();
+  return {{"u", at[0]},
+          {"v", at[1]},
+          {"point", json_vector(derivatives(0, 0), file, flag, "the point")},
+          {"derivatives", std::move(values)}};
 }
 
 }  // namespace
@@ -148,18 +142,16 @@ int eval_command(const std::vector<std::string>& arguments, std::ostream& out) {
   const Shape shape = read_shape_file(file);
   const bool is_curve = std::holds_alternative<NurbsCurve>(shape);
   // Build the whole output first so that an error prints nothing on stdout
-  std::ostringstream text;
-  text << "{\n  \"file\": " << json_string(file)
-       << ",\n  \"type\": " << (is_curve ? "\"nurbs_curve\"" : "\"nurbs_surface\"")
-       << ",\n  \"derivative_order\": " << order << ",\n  \"evaluations\": [\n";
+  nlohmann::ordered_json evaluations = nlohmann::ordered_json::array();
   for (size_t i = 0; i < parameters.size(); ++i) {
-    text << std::visit(
+    evaluations.push_back(std::visit(
         [&](const auto& value) { return evaluate(value, parameters[i], order, file, at_flags[i]); },
-        shape);
-    text << (i + 1 < parameters.size() ? ",\n" : "\n");
+        shape));
   }
-  text << "  ]\n}\n";
-  out << text.str();
+  print_json(out, {{"file", file},
+                   {"type", is_curve ? "nurbs_curve" : "nurbs_surface"},
+                   {"derivative_order", order},
+                   {"evaluations", std::move(evaluations)}});
   return kExitOk;
 }
 

@@ -8,6 +8,9 @@
 #include <functional>
 #include <optional>
 #include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/progress_report.h"
@@ -52,12 +55,8 @@ exit codes: 0 ok, 1 bad data, 2 bad command line
 
 namespace {
 
-void print_vector(std::ostream& out, const Eigen::VectorXd& values) {
-  out << "[";
-  for (Eigen::Index i = 0; i < values.size(); ++i) {
-    out << (i > 0 ? ", " : "") << json_double(values[i]);
-  }
-  out << "]";
+nlohmann::ordered_json json_array(const Eigen::VectorXd& values) {
+  return std::vector<double>(values.data(), values.data() + values.size());
 }
 
 // Where --out writes, and the mesh resolution.
@@ -70,14 +69,13 @@ int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& ou
                              std::ostream& out) {
   const SuperquadricFitResult fit = fit_superquadric(points);
   std::ostringstream text;
-  text << "{\n  \"shape\": \"superquadric\",\n  \"q_s\": ";
-  print_vector(text, fit.shape);
-  text << ",\n  \"centre\": ";
-  print_vector(text, fit.centre);
-  text << ",\n  \"rotation\": ";
-  print_vector(text, Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9));
-  text << ",\n  \"rms_error\": " << json_double(fit.rms_error)
-       << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
+  print_json(text,
+             {{"shape", "superquadric"},
+              {"q_s", json_array(fit.shape)},
+              {"centre", json_array(fit.centre)},
+              {"rotation", json_array(Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9))},
+              {"rms_error", fit.rms_error},
+              {"max_error", fit.max_error}});
   if (output.directory) {
     std::filesystem::create_directories(*output.directory);
     write_file_atomically(output_file_path(*output.directory, "superquadric.json"), text.str());
@@ -116,13 +114,13 @@ int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, d
     export_mesh(tessellate_surface(surface, output.resolution, output.resolution),
                 output_file_path(*output.directory, "surface.obj"));
   }
-  out << "{\n  \"shape\": \"nurbs_surface\",\n  \"degree\": " << degree << ",\n  \"knots\": ";
-  print_vector(out, Eigen::Map<const Eigen::VectorXd>(knots.knots().data(), knots.size()));
-  out << ",\n  \"control_points\": ";
-  print_vector(out, fit.coordinates);
-  out << ",\n  \"iterations\": " << fit.iterations
-      << ",\n  \"rms_error\": " << json_double(fit.rms_error)
-      << ",\n  \"max_error\": " << json_double(fit.max_error) << "\n}\n";
+  print_json(out, {{"shape", "nurbs_surface"},
+                   {"degree", degree},
+                   {"knots", knots.knots()},
+                   {"control_points", json_array(fit.coordinates)},
+                   {"iterations", fit.iterations},
+                   {"rms_error", fit.rms_error},
+                   {"max_error", fit.max_error}});
   return kExitOk;
 }
 

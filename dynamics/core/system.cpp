@@ -1,11 +1,23 @@
 #include "dynamics/core/system.h"
 
+#include <atomic>
 #include <cmath>
 #include <utility>
 
 #include "core/error.h"
 
 namespace dnurbs {
+
+namespace {
+
+// Revisions are unique across every System of the process, so that an integrator that steps
+// several systems never takes one's layout and factorization for another's.
+std::uint64_t next_revision() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
+}  // namespace
 
 namespace {
 
@@ -95,7 +107,7 @@ int System::add_model(const Model& model) {
   for (const int index : model.fixed_coordinates()) {
     fixed_.push_back(velocity_offset + index);
   }
-  ++revision_;
+  revision_ = next_revision();
   rebuild_caches();
   return model_count() - 1;
 }
@@ -145,6 +157,30 @@ void System::rebuild_caches() {
     scalar_matrices_.damping = block_diagonal(damping);
     scalar_matrices_.stiffness = block_diagonal(stiffness);
   }
+}
+
+void System::fix_point(int model, int point) {
+  check_index(model);
+  models_[static_cast<size_t>(model)]->fix_point(point);
+  refresh_fixed();
+}
+
+void System::fix_border(int model) {
+  check_index(model);
+  models_[static_cast<size_t>(model)]->fix_border();
+  refresh_fixed();
+}
+
+void System::refresh_fixed() {
+  fixed_.clear();
+  for (int i = 0; i < model_count(); ++i) {
+    for (const int index : models_[static_cast<size_t>(i)]->fixed_coordinates()) {
+      fixed_.push_back(velocity_offsets_[static_cast<size_t>(i)] + index);
+      velocities_[velocity_offsets_[static_cast<size_t>(i)] + index] = 0.0;
+    }
+  }
+  accelerations_valid_ = false;
+  revision_ = next_revision();
 }
 
 void System::check_index(int i) const {

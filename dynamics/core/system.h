@@ -37,7 +37,14 @@ class System {
   ~System() = default;
 
   /// Adds a copy of `model` with its initial coordinates and zero velocity; returns its index.
+  /// Later changes to `model` itself do not reach the System: fix points on the model before
+  /// adding it, or afterwards through fix_point and fix_border below.
   int add_model(const Model& model);
+  /// Model::fix_point(point) on the System's copy of model `model`: the point's coordinates keep
+  /// their current values and their velocities become zero (Error naming a bad index).
+  void fix_point(int model, int point);
+  /// Model::fix_border() on the System's copy of model `model` (Error if the model has none).
+  void fix_border(int model);
   int model_count() const { return static_cast<int>(models_.size()); }
   const Model& model(int i) const;
   int coordinate_offset(int i) const;
@@ -140,12 +147,15 @@ class System {
   /// Sum of the models' elastic energies at the current state.
   double potential_energy() const;
 
-  /// Changes whenever models are added (integrators refactor when it changes).
+  /// Changes whenever models are added or points fixed (integrators refactor when it changes);
+  /// unique across the process's systems (a copy keeps its original's until it changes).
   std::uint64_t revision() const { return revision_; }
 
  private:
   void rebuild_caches();
   void check_index(int i) const;
+  // fixed_ again from every model's fixed coordinates, their velocities zeroed; a new revision.
+  void refresh_fixed();
 
   std::vector<std::unique_ptr<Model>> models_;
   std::vector<int> coordinate_offsets_;

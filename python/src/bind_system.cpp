@@ -63,11 +63,17 @@ void bind_system_state(py::class_<System>& system) {
           py::arg("memo"))
       .def("add_model", &System::add_model, py::arg("model"),
            "Adds a copy of `model` with its initial coordinates and zero velocity; returns its "
-           "index.")
+           "index. Later changes to `model` do not reach the system: use fix_point and "
+           "fix_border of the system.")
+      .def("fix_point", &System::fix_point, py::arg("model"), py::arg("point"),
+           "Fixes control point (or node) `point` of the system's model `model` where it is now "
+           "(its velocity zero).")
+      .def("fix_border", &System::fix_border, py::arg("model"),
+           "Fixes every point on the border of the system's model `model`.")
       .def_property_readonly("model_count", &System::model_count, "Number of models.")
       .def(
           "model", [](const System& self, int i) { return self.model(i).clone(); }, py::arg("i"),
-          "A copy of model i (boundary conditions are set before add_model).")
+          "A copy of model i (fix points through the system's fix_point and fix_border).")
       .def("coordinate_offset", &System::coordinate_offset, py::arg("i"),
            "Offset of model i's coordinates in the stacked q.")
       .def("velocity_offset", &System::velocity_offset, py::arg("i"),

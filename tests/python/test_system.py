@@ -27,6 +27,29 @@ def sheet(count=6, b20=0.1, damping=1.0):
     return model
 
 
+def test_points_fixed_through_the_system_hold_and_on_the_model_do_not():
+    model = sheet()
+    system = dnurbs.System()
+    system.add_model(model)
+    model.fix_border()  # a copy is in the system: no effect there
+    assert system.fixed_coordinates == []
+    system.fix_border(0)
+    assert system.fixed_coordinates == model.fixed_coordinates
+    system.add_gravity(0, [0, 0, -1])
+    integrator = dnurbs.Integrator()
+    for _ in range(5):
+        integrator.step(system, 0.01)
+    centre = 3 * (2 * 6 + 2)
+    held = system.coordinates[centre:centre + 3].copy()
+    assert held[2] < -1e-5
+    system.fix_point(0, 14)
+    for _ in range(5):
+        integrator.step(system, 0.01)
+    np.testing.assert_array_equal(system.coordinates[centre:centre + 3], held)
+    with pytest.raises(dnurbs.Error, match="model index 2"):
+        system.fix_point(2, 0)
+
+
 def test_linear_curve_matrices_equal_exact_integrals():
     model = line_model(tension=3.0)
     assert model.coordinate_count == 6 and model.parametric_dimension == 1

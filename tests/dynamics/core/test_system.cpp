@@ -96,6 +96,83 @@ TEST(SystemValue, CopiesAreIndependent) {
   EXPECT_NE(&copy.model(0), &original.model(0));
 }
 
+// A System holds copies of its models: a point fixed on the model after adding it does not reach
+// the System (issue 21's friction), which fix_point / fix_border do, before or during a run.
+TEST(SystemBoundary, FixingThroughTheSystemActsOnItsCopy) {
+  DNurbsSurfaceMaterial material;
+  material.a10 = material.a01 = 1.0;
+  const DNurbsSurface free_sheet(test::flat_patch(2, 2, 3, 3), material);
+  DNurbsSurface fixed_first = free_sheet;
+  fixed_first.fix_border();
+  System before(fixed_first);
+  System through(free_sheet);
+  through.fix_border(0);
+  DNurbsSurface model = free_sheet;
+  System ignored(model);
+  model.fix_border();  // the System's copy is not touched
+  for (System* system : {&before, &through, &ignored}) {
+    system->add_force(0, gravity(Eigen::Vector3d(0, 0, -1)));
+  }
+  // One integrator per system: an integrator keeps the factorization of the system it steps
+  Integrator integrator;
+  Integrator integrator_through;
+  Integrator integrator_ignored;
+  for (int n = 0; n < 10; ++n) {
+    integrator.step(before, 0.01);
+    integrator_through.step(through, 0.01);
+    integrator_ignored.step(ignored, 0.01);
+  }
+  EXPECT_EQ(through.coordinates(), before.coordinates());
+  EXPECT_EQ(through.fixed_coordinates(), before.fixed_coordinates());
+  EXPECT_TRUE(ignored.fixed_coordinates().empty());
+  EXPECT_LT(ignored.coordinates()[2], -1e-4);  // its corner fell
+
+  // Fixed mid-run: the point stays where it was, its velocity zero; the rest keeps moving
+  const int centre = 12;  // control point (2, 2) of the 5 x 5 net
+  const Eigen::Vector3d held = before.coordinates().segment<3>(3 * centre);
+  ASSERT_LT(held.z(), -1e-4);
+  before.fix_point(0, centre);
+  EXPECT_EQ(before.velocities().segment<3>(3 * centre), Eigen::Vector3d::Zero());
+  const Eigen::VectorXd q = before.coordinates();
+  for (int n = 0; n < 10; ++n) {
+    integrator.step(before, 0.01);
+  }
+  EXPECT_EQ(before.coordinates().segment<3>(3 * centre), held);
+  EXPECT_GT((before.coordinates() - q).norm(), 1e-6);
+  EXPECT_THROW(before.fix_point(1, 0), Error);
+  EXPECT_THROW(before.fix_point(0, 25), Error);
+}
+
+// One integrator stepping two systems in turn (a clamped and a free sheet, built alike, so that
+// their layouts were once counted the same) steps each as its own integrator would: a System's
+// revision is unique, so the integrator never reuses the other's factorization.
+TEST(SystemBoundary, AnIntegratorSteppingTwoSystemsKeepsThemApart) {
+  DNurbsSurfaceMaterial material;
+  material.a10 = material.a01 = 1.0;
+  DNurbsSurface clamped(test::flat_patch(2, 2, 3, 3), material);
+  clamped.fix_border();
+  const DNurbsSurface free_sheet(test::flat_patch(2, 2, 3, 3), material);
+  System a(clamped);
+  System b(free_sheet);
+  System a_alone(clamped);
+  System b_alone(free_sheet);
+  for (System* system : {&a, &b, &a_alone, &b_alone}) {
+    system->add_force(0, gravity(Eigen::Vector3d(0, 0, -1)));
+  }
+  EXPECT_NE(a.revision(), b.revision());
+  Integrator shared;
+  Integrator own_a;
+  Integrator own_b;
+  for (int n = 0; n < 10; ++n) {
+    shared.step(a, 0.01);
+    shared.step(b, 0.01);
+    own_a.step(a_alone, 0.01);
+    own_b.step(b_alone, 0.01);
+  }
+  EXPECT_EQ(a.coordinates(), a_alone.coordinates());
+  EXPECT_EQ(b.coordinates(), b_alone.coordinates());
+}
+
 TEST(SystemState, SettersRejectBadSizesAndNonFiniteValues) {
   System system(string_model());
   EXPECT_THROW(system.set_coordinates(0, Eigen::VectorXd::Zero(3)), Error);
