@@ -172,6 +172,7 @@ struct Problem {
   const Eigen::MatrixX3d* points = nullptr;
   const SuperquadricFitSettings* settings = nullptr;
   int evaluations = 0;
+  double best = std::numeric_limits<double>::infinity();  // lowest objective so far
 };
 
 // (1/N) sum_k d_k^2 and its gradient (if `gradient` is not null) over the variables.
@@ -232,7 +233,12 @@ void check_settings(const SuperquadricFitSettings& settings) {
 double objective(unsigned, const double* x, double* gradient, void* data) {
   auto& problem = *static_cast<Problem*>(data);
   ++problem.evaluations;
-  return mean_squared_distance(problem, x, gradient);
+  const double value = mean_squared_distance(problem, x, gradient);
+  problem.best = std::min(problem.best, value);
+  if (problem.settings->on_evaluation) {
+    problem.settings->on_evaluation(problem.evaluations, std::sqrt(problem.best));
+  }
+  return value;
 }
 
 // One bounded run from x (updated in place); returns the objective.

@@ -18,6 +18,8 @@
 // (-t1, -t2, b1) (about x), (-t1, -t2, -b1) (about y) and (t1, t2, -b1) (about z) with the same
 // shape; the fitter returns the representative with b1 >= 0 and t1 >= 0.
 
+#include <functional>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -41,6 +43,9 @@ struct SuperquadricFitSettings {
   int start_evaluations = 300;  ///< of each of the 24 starts (> 0)
   int max_evaluations = 20000;  ///< of the polishing run of the best start (> 0)
   double variable_tolerance = 1e-12;
+  /// Called after every objective evaluation with the evaluations so far and the rms radial
+  /// distance of the best parameters so far (progress reports; empty: none).
+  std::function<void(int evaluations, double best_rms)> on_evaluation;
 };
 
 struct SuperquadricFitResult {

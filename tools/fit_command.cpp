@@ -43,12 +43,13 @@ DIR/superquadric.json (the printed JSON), and DIR/<shape>.obj, the fitted shape 
 options:
   --out DIR           write the fitted shape and its OBJ mesh into DIR
   --resolution N      mesh segments per direction (default 32)
+  --quiet             no progress lines (on stderr, at most one a second: the iterations of
+                      the surface fit, the objective evaluations of the superquadric fit)
 options (surface):
   --degree P          degree in u and v (default 3)
   --spans N           knot spans in u and v (default 4)
   --smoothness S      weight of the thin-plate energy (default 1e-6)
   --iterations N      projection-and-solve iterations (default 30)
-  --quiet             no progress lines (on stderr, at most one a second, for the surface fit)
 
 exit codes: 0 ok, 1 bad data, 2 bad command line
 )";
@@ -66,8 +67,11 @@ struct FitOutput {
 };
 
 int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& output,
-                             std::ostream& out) {
-  const SuperquadricFitResult fit = fit_superquadric(points);
+                             std::ostream& out,
+                             const std::function<void(int, double)>& on_evaluation) {
+  SuperquadricFitSettings settings;
+  settings.on_evaluation = on_evaluation;
+  const SuperquadricFitResult fit = fit_superquadric(points, settings);
   std::ostringstream text;
   print_json(text,
              {{"shape", "superquadric"},
@@ -167,21 +171,22 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out, st
         std::string("unknown fit shape '").append(shape).append("' (superquadric or surface)"));
   }
   const Eigen::MatrixX3d points = read_fit_points(path);
-  if (shape == "superquadric") {
-    return fit_superquadric_command(points, output, out);
-  }
-  // Progress on stderr (stdout is the JSON result), at most once a second
-  ProgressReport progress(err, "iteration", ::isatty(STDERR_FILENO) == 1);
-  std::function<void(int, double)> on_iteration;
+  // Progress on stderr (stdout is the JSON result), at most once a second: iterations of the
+  // surface fit, objective evaluations of the superquadric fit (24 starts, then a polish)
+  const bool superquadric = shape == "superquadric";
+  ProgressReport progress(err, superquadric ? "evaluation" : "iteration",
+                          ::isatty(STDERR_FILENO) == 1);
+  std::function<void(int, double)> on_progress;
   if (!quiet) {
-    on_iteration = [&progress](int iteration, double rms_error) {
+    on_progress = [&progress, superquadric](int count, double rms_error) {
       std::ostringstream detail;
-      detail << "rms distance " << rms_error;
-      progress.update(iteration, 0, detail.str());
+      detail << (superquadric ? "best rms distance " : "rms distance ") << rms_error;
+      progress.update(count, 0, detail.str());
     };
   }
-  const int status =
-      fit_surface_command(points, degree, spans, smoothness, iterations, output, out, on_iteration);
+  const int status = superquadric ? fit_superquadric_command(points, output, out, on_progress)
+                                  : fit_surface_command(points, degree, spans, smoothness,
+                                                        iterations, output, out, on_progress);
   progress.finish();
   return status;
 }

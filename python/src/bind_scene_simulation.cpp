@@ -36,7 +36,9 @@ py::dict run_result_dict(const SceneRunResult& run) {
                   py::arg("diverged") = run.diverged, py::arg("stopped") = run.stopped,
                   py::arg("message") = run.message, py::arg("frames_written") = run.frames_written,
                   py::arg("log") = run.log, py::arg("checkpoint") = run.checkpoint,
-                  py::arg("final_mesh") = run.final_mesh, py::arg("shape_files") = run.shape_files);
+                  py::arg("final_mesh") = run.final_mesh,
+                  py::arg("final_meshes") = run.final_meshes,
+                  py::arg("shape_files") = run.shape_files);
 }
 
 py::dict cost_dict(const SceneModelCost& cost) {
@@ -73,7 +75,7 @@ py::dict simulation_run(SceneSimulation& simulation, const std::filesystem::path
   std::function<void(const SceneRunProgress&)> callback;
   if (!progress.is_none()) {
     callback = [&progress](const SceneRunProgress& state) {
-      progress(state.step, state.total, state.time);
+      progress(state.step, state.total, state.time, state.energy);
     };
   }
   return run_result_dict(run_scene(simulation, options, callback));
@@ -240,9 +242,10 @@ void bind_scene_simulation(py::module_& module) {
            "checkpoint.json, the final meshes and shape files into `output_directory`. resume: "
            "a checkpoint file to continue from; stop_after: stop after this many steps in "
            "total (-1: run to the end); resolution > 0 overrides the mesh resolution; "
-           "progress(step, total, time) is called after each step. Returns a dict (steps_done, "
-           "total_steps, diverged, stopped, message, frames_written, log, checkpoint, "
-           "final_mesh, shape_files); a diverging step is not an exception here.");
+           "progress(step, total, time, energy) is called after each step (energy: kinetic plus "
+           "elastic, log.csv's total_energy). Returns a dict (steps_done, total_steps, diverged, "
+           "stopped, message, frames_written, log, checkpoint, final_mesh, final_meshes (one per "
+           "output format), shape_files); a diverging step is not an exception here.");
   bind_simulation_state(simulation);
   bind_simulation_restore(simulation);
 }

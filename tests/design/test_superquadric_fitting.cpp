@@ -6,6 +6,8 @@
 #include <iostream>
 #include <numbers>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -102,6 +104,35 @@ TEST(SuperquadricFitting, RecoversParametersFromNoiseFreePoints) {
       EXPECT_LT(rotation_error, 1e-3);
     }
   }
+}
+
+// The progress callback sees every evaluation once, in order, with a best rms distance that never
+// rises and ends at the result's (a noisy fit, whose minimum is not zero)
+TEST(SuperquadricFitting, ReportsEveryEvaluationWithTheBestRmsSoFar) {
+  std::mt19937 random(11);
+  const Truth truth = random_superquadric(random, 0.8, 1.2);
+  Eigen::MatrixX3d points = sample(truth, 10, 14);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (Eigen::Index i = 0; i < points.size(); ++i) {
+    points.data()[i] += noise(random);
+  }
+  SuperquadricFitSettings settings;
+  std::vector<std::pair<int, double>> reported;
+  settings.on_evaluation = [&reported](int evaluations, double best_rms) {
+    reported.emplace_back(evaluations, best_rms);
+  };
+  const SuperquadricFitResult fit = fit_superquadric(points, settings);
+  ASSERT_EQ(reported.size(), static_cast<size_t>(fit.evaluations));
+  for (size_t i = 0; i < reported.size(); ++i) {
+    ASSERT_EQ(reported[i].first, static_cast<int>(i) + 1);
+    if (i > 0) {
+      ASSERT_LE(reported[i].second, reported[i - 1].second);
+    }
+  }
+  EXPECT_GT(fit.rms_error, 1e-3);
+  // The result's rms is evaluated again at the canonical pose: equal up to round-off
+  EXPECT_NEAR(reported.back().second, fit.rms_error, 1e-12 * fit.rms_error + 1e-15);
+  EXPECT_GT(reported.front().second, reported.back().second);
 }
 
 TEST(SuperquadricFitting, AnalyticGradientMatchesCentralDifferences) {

@@ -66,9 +66,11 @@ def test_python_loop_equals_library_run_and_outputs_read_back(tmp_path):
     stepped.step(100)
     ran = dnurbs.SceneSimulation(scene)
     progress = []
-    result = ran.run(tmp_path / "out", progress=lambda step, total, time: progress.append(step))
+    result = ran.run(tmp_path / "out",
+                     progress=lambda step, total, time, energy: progress.append((step, energy)))
     assert result["steps_done"] == 100 and not result["diverged"]
-    assert progress == list(range(1, 101))
+    assert [step for step, _ in progress] == list(range(1, 101))
+    assert result["final_meshes"] == [result["final_mesh"]]
     np.testing.assert_array_equal(ran.coordinates, stepped.coordinates)
     checkpoint = dnurbs.read_checkpoint(result["checkpoint"])
     np.testing.assert_array_equal(checkpoint["coordinates"], stepped.coordinates)
@@ -76,6 +78,9 @@ def test_python_loop_equals_library_run_and_outputs_read_back(tmp_path):
     assert log.shape == (101, len(columns))  # step 0 and every step (log_every 1)
     assert columns[1:] == stepped.log_columns
     np.testing.assert_array_equal(log[:, 0], np.arange(101))
+    # The energy the callback saw is the log's total_energy at that step
+    total = columns.index("total_energy")
+    np.testing.assert_array_equal([energy for _, energy in progress], log[1:, total])
     # The probe "middle" at u = 0.5: its logged position is the curve's point there.
     probe = [columns.index(f"middle_{axis}") for axis in "xyz"]
     shape = stepped.shape(0)
