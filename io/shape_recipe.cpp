@@ -19,6 +19,8 @@ namespace {
 constexpr int kMaxControlPoints = 100000;
 constexpr int kMaxPerDirection = 1000;
 constexpr int kMaxSplit = 64;
+// A loft interpolates its sections with a dense system of this order at the most.
+constexpr size_t kMaxSections = 1000;
 // Recipes nest through their curves; a hostile document must not recurse without bound.
 constexpr int kMaxNesting = 8;
 
@@ -184,11 +186,15 @@ const std::vector<RecipeKind>& recipe_table() {
            k.reader().fail(k.path("sections"),
                            "expected an array of >= 2 curves, got " + describe_json_value(list));
          }
+         if (list.size() > kMaxSections) {
+           k.reader().fail(k.path("sections"), "expected at most " + std::to_string(kMaxSections) +
+                                                   " curves, got " + describe_json_value(list));
+         }
          std::vector<NurbsCurve> curves;
          for (size_t i = 0; i < list.size(); ++i) {
            curves.push_back(k.curve(list[i], json_index_path(k.path("sections"), i)));
          }
-         return loft(curves, k.integer("degree", 3, 1, kMaxDegree));
+         return loft(curves, k.integer("degree", 3, 1, kMaxDegree), nullptr, kMaxControlPoints);
        }},
   };
   return table;

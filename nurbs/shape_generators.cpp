@@ -302,7 +302,7 @@ NurbsSurface extrude(const NurbsCurve& curve, const Eigen::Vector3d& direction) 
 }
 
 NurbsSurface loft(const std::vector<NurbsCurve>& sections, int degree_v,
-                  std::vector<double>* section_parameters) {
+                  std::vector<double>* section_parameters, long long max_control_points) {
   const int n = static_cast<int>(sections.size());
   if (n < 2) {
     throw make_error("a loft needs at least 2 sections, got ", n);
@@ -331,6 +331,12 @@ NurbsSurface loft(const std::vector<NurbsCurve>& sections, int degree_v,
                    std::back_inserter(merged_now));
     merged = std::move(merged_now);
     compatible.push_back(std::move(c));
+  }
+  const long long count = static_cast<long long>(merged.size() - degree_u - 1) * n;
+  if (count > max_control_points) {
+    throw make_error("the loft would make ", count, " control points (",
+                     merged.size() - degree_u - 1, " per section, ", n,
+                     " sections), more than the limit of ", max_control_points);
   }
   for (NurbsCurve& c : compatible) {
     c = refine_knots(c, missing_knots(c.knots().knots(), merged));

@@ -15,6 +15,7 @@
 // distance along it. The revolved shapes follow the orientation of surface_of_revolution
 // (primitive_shapes.h): u along the profile, v counter-clockwise about +z.
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -87,9 +88,12 @@ NurbsSurface extrude(const NurbsCurve& curve, const Eigen::Vector3d& direction);
 /// scaled to [0, 1], by a clamped B-spline of degree min(degree_v, count - 1) with averaged knots
 /// (Piegl & Tiller, eqs. 9.5, 9.8). S(u, v_k) is section k for every u. At least two open
 /// sections; throws Error naming the section for a periodic or a bad one. When
-/// `section_parameters` is given it receives v_k of every section.
+/// `section_parameters` is given it receives v_k of every section. A loft that would have more
+/// than `max_control_points` control points (merged knots times sections) is refused before
+/// the sections are refined.
 NurbsSurface loft(const std::vector<NurbsCurve>& sections, int degree_v = 3,
-                  std::vector<double>* section_parameters = nullptr);
+                  std::vector<double>* section_parameters = nullptr,
+                  long long max_control_points = std::numeric_limits<long long>::max());
 
 /// The same surface with every non-empty knot span split into `parts.x()` (u) and `parts.y()`
 /// (v) equal spans by knot insertion (parts >= 1): more control points, the same geometry and

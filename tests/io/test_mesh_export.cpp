@@ -130,7 +130,8 @@ INSTANTIATE_TEST_SUITE_P(Formats, MeshExportRoundTrip,
 
 // glTF is Y-up (io/mesh_up_axis.h): the file holds (x, z, -y), which its POSITION accessor's
 // bounds show, and the import turns it back exactly; OBJ keeps the model's axes
-TEST(MeshExport, GltfIsWrittenYUpAndReadBackZUp) {
+// One triangle "tri" with corners (0, 0, 0), (1, 0, 0), (0, 2, 1).
+TriangleMesh one_triangle() {
   TriangleMesh triangle;
   triangle.name = "tri";
   triangle.vertices.resize(3, 3);
@@ -139,6 +140,11 @@ TEST(MeshExport, GltfIsWrittenYUpAndReadBackZUp) {
       0, 2, 1;
   triangle.triangles.resize(1, 3);
   triangle.triangles << 0, 1, 2;
+  return triangle;
+}
+
+TEST(MeshExport, GltfIsWrittenYUpAndReadBackZUp) {
+  const TriangleMesh triangle = one_triangle();
   const auto directory = fresh_directory("y_up");
   export_mesh(triangle, directory / "tri.gltf");
   const Json gltf = Json::parse(std::ifstream(directory / "tri.gltf"));
@@ -160,12 +166,7 @@ TEST(MeshExport, GltfIsWrittenYUpAndReadBackZUp) {
 
 // UpAxis::kY turns OBJ, STL and PLY Y-up like glTF; glTF is Y-up whatever the setting
 TEST(MeshExport, UpAxisYTurnsTheFormatsThatDeclareNoAxis) {
-  TriangleMesh triangle;
-  triangle.name = "tri";
-  triangle.vertices.resize(3, 3);
-  triangle.vertices << 0, 0, 0, 1, 0, 0, 0, 2, 1;
-  triangle.triangles.resize(1, 3);
-  triangle.triangles << 0, 1, 2;
+  const TriangleMesh triangle = one_triangle();
   const Eigen::MatrixX3d turned = triangle.vertices * z_up_to_y_up().transpose();
   const auto directory = fresh_directory("up_axis");
   for (const char* name : {"tri.obj", "tri.stl", "tri.ply"}) {
@@ -186,12 +187,7 @@ TEST(MeshExport, UpAxisYTurnsTheFormatsThatDeclareNoAxis) {
 // The glTF documents list no extension they do not use (assimp lists KHR_materials_volume and
 // FB_ngon_encoding whatever the scene); the binary file's header and chunk lengths stay valid
 TEST(MeshExport, GltfListsOnlyTheExtensionsItUses) {
-  TriangleMesh triangle;
-  triangle.name = "tri";
-  triangle.vertices.resize(3, 3);
-  triangle.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
-  triangle.triangles.resize(1, 3);
-  triangle.triangles << 0, 1, 2;
+  const TriangleMesh triangle = one_triangle();
   const auto directory = fresh_directory("extensions");
   export_mesh(triangle, directory / "tri.gltf");
   export_mesh(triangle, directory / "tri.glb");

@@ -109,6 +109,13 @@ TEST(ShapeRecipe, BadRecipesNameTheirJsonPath) {
               HasSubstr("the recipe makes 1000000 control points, more than the limit"));
   EXPECT_THAT(message(R"({"kind": "plane", "control_points": [300, 300], "split": [2, 2]})"),
               HasSubstr("more than the limit"));
+  // A loft of many sections of many knots is refused before its sections are refined
+  std::string many = R"({"kind": "loft", "sections": [)";
+  for (int i = 0; i < 40; ++i) {
+    many += std::string(i > 0 ? ", " : "") + R"({"kind": "line", "control_points": )" +
+            std::to_string(400 + 7 * i) + "}";
+  }
+  EXPECT_THAT(message(many + "]}"), HasSubstr("make: the loft would make"));
   // Nesting is bounded: a hostile document cannot recurse without end
   std::string nested = R"({"kind": "line"})";
   for (int i = 0; i < 12; ++i) {
