@@ -16,15 +16,15 @@
 namespace dnurbs {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::fresh_directory;
+using ::testing::HasSubstr;
 using testing::run_dnurbs;
 
 TEST(MakeCommand, WritesTheShapeFileOfTheGenerator) {
   const auto directory = fresh_directory("make");
   const std::string sheet = (directory / "sheet.json").string();
-  const auto made = run_dnurbs("make plane " + sheet +
-                               " --size 3,2 --control-points 9,7 --degree '[3, 2]'");
+  const auto made =
+      run_dnurbs("make plane " + sheet + " --size 3,2 --control-points 9,7 --degree '[3, 2]'");
   ASSERT_EQ(made.exit_code, 0) << made.err;
   EXPECT_EQ(made.out, sheet + ": nurbs_surface, 9 x 7 control points, degrees 3 x 2\n");
   EXPECT_EQ(shape_to_json(read_shape_file(sheet)),
