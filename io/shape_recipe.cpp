@@ -126,8 +126,15 @@ const std::vector<RecipeKind>& recipe_table() {
          if (k.find("domain") != nullptr) {
            domain = k.positive_pair("domain", {1, 1});
          }
-         return greville_plane(k.positive_pair("size", {1, 1}),
-                               k.integer_pair("control_points", {4, 4}, 2, kMaxPerDirection),
+         const Eigen::Vector2i counts =
+             k.integer_pair("control_points", {4, 4}, 2, kMaxPerDirection);
+         if (counts.x() * counts.y() > kMaxControlPoints) {  // refused before it is built
+           k.reader().fail(k.path("control_points"),
+                           "the recipe makes " + std::to_string(counts.x() * counts.y()) +
+                               " control points, more than the limit of " +
+                               std::to_string(kMaxControlPoints));
+         }
+         return greville_plane(k.positive_pair("size", {1, 1}), counts,
                                k.integer_pair("degree", {3, 3}, 1, kMaxDegree),
                                k.point("origin", Eigen::Vector3d::Zero()), domain);
        }},
