@@ -24,6 +24,16 @@ constexpr size_t kMaxSections = 1000;
 // Recipes nest through their curves; a hostile document must not recurse without bound.
 constexpr int kMaxNesting = 8;
 
+// Fails at `path` if a recipe would make more than kMaxControlPoints control points.
+void check_control_point_count(const SceneReader& reader, const std::string& path,
+                               long long count) {
+  if (count > kMaxControlPoints) {
+    reader.fail(path, "the recipe makes " + std::to_string(count) +
+                          " control points, more than the limit of " +
+                          std::to_string(kMaxControlPoints));
+  }
+}
+
 Shape make_nested_shape(const SceneReader& reader, const JsonValue& recipe, const std::string& path,
                         int depth);
 
@@ -128,12 +138,8 @@ const std::vector<RecipeKind>& recipe_table() {
          }
          const Eigen::Vector2i counts =
              k.integer_pair("control_points", {4, 4}, 2, kMaxPerDirection);
-         if (counts.x() * counts.y() > kMaxControlPoints) {  // refused before it is built
-           k.reader().fail(k.path("control_points"),
-                           "the recipe makes " + std::to_string(counts.x() * counts.y()) +
-                               " control points, more than the limit of " +
-                               std::to_string(kMaxControlPoints));
-         }
+         // Refused before it is built
+         check_control_point_count(k.reader(), k.path("control_points"), counts.x() * counts.y());
          return greville_plane(k.positive_pair("size", {1, 1}), counts,
                                k.integer_pair("degree", {3, 3}, 1, kMaxDegree),
                                k.point("origin", Eigen::Vector3d::Zero()), domain);
@@ -274,13 +280,7 @@ Shape make_nested_shape(const SceneReader& reader, const JsonValue& recipe, cons
     }
   }();
   // The count is checked before splitting, which would allocate the split net
-  const auto check_count = [&](long long count) {
-    if (count > kMaxControlPoints) {
-      reader.fail(path, "the recipe makes " + std::to_string(count) +
-                            " control points, more than the limit of " +
-                            std::to_string(kMaxControlPoints));
-    }
-  };
+  const auto check_count = [&](long long count) { check_control_point_count(reader, path, count); };
   const auto added = [](const KnotVector& knots, int parts) {
     return knots.control_point_count() + static_cast<long long>(parts - 1) *
                                              static_cast<long long>(knots.non_empty_spans().size());

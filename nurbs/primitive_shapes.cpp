@@ -7,12 +7,6 @@
 namespace dnurbs {
 namespace {
 
-void check_radius(double radius, const char* name) {
-  if (!std::isfinite(radius) || !(radius > 0.0)) {
-    throw make_error(name, " must be finite and > 0, got ", radius);
-  }
-}
-
 const double half_sqrt2 = std::sqrt(0.5);
 
 // (x, y, weight) of the 8 distinct control points of the periodic unit circle, from angle 0.
@@ -30,8 +24,14 @@ KnotVector periodic_circle_knots() {
 
 }  // namespace
 
+void check_shape_size(double value, const char* name) {
+  if (!std::isfinite(value) || !(value > 0.0)) {
+    throw make_error(name, " must be finite and > 0, got ", value);
+  }
+}
+
 NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre) {
-  check_radius(radius, "circle radius");
+  check_shape_size(radius, "circle radius");
   Eigen::MatrixX3d points(9, 3);
   points << 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0, -1, 0, 0, -1, -1, 0, 0, -1, 0, 1, -1, 0, 1, 0, 0;
   points *= radius;
@@ -43,7 +43,7 @@ NurbsCurve full_circle(double radius, const Eigen::Vector3d& centre) {
 }
 
 NurbsCurve periodic_circle(double radius, const Eigen::Vector3d& centre) {
-  check_radius(radius, "circle radius");
+  check_shape_size(radius, "circle radius");
   const auto circle = periodic_unit_circle();
   Eigen::MatrixX3d points(kPeriodicCirclePoints, 3);
   for (int i = 0; i < kPeriodicCirclePoints; ++i) {
@@ -54,7 +54,7 @@ NurbsCurve periodic_circle(double radius, const Eigen::Vector3d& centre) {
 }
 
 NurbsCurve half_circle_xz(double radius) {
-  check_radius(radius, "half circle radius");
+  check_shape_size(radius, "half circle radius");
   Eigen::MatrixX3d points(5, 3);
   points << 0, 0, -1, 1, 0, -1, 1, 0, 0, 1, 0, 1, 0, 0, 1;
   points *= radius;
@@ -95,8 +95,8 @@ NurbsSurface sphere(double radius) {
 }
 
 NurbsSurface torus(double major_radius, double minor_radius) {
-  check_radius(major_radius, "torus major radius");
-  check_radius(minor_radius, "torus minor radius");
+  check_shape_size(major_radius, "torus major radius");
+  check_shape_size(minor_radius, "torus minor radius");
   if (!(minor_radius < major_radius)) {
     throw make_error("torus minor radius ", minor_radius, " must be below the major radius ",
                      major_radius);
@@ -112,8 +112,8 @@ NurbsSurface torus(double major_radius, double minor_radius) {
 
 NurbsSurface periodic_torus(double major_radius, double minor_radius,
                             const Eigen::Vector3d& centre) {
-  check_radius(major_radius, "torus major radius");
-  check_radius(minor_radius, "torus minor radius");
+  check_shape_size(major_radius, "torus major radius");
+  check_shape_size(minor_radius, "torus minor radius");
   const auto circle = periodic_unit_circle();
   const int n = kPeriodicCirclePoints;
   Eigen::MatrixX3d points(n * n, 3);

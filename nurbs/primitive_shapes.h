@@ -6,6 +6,10 @@
 
 namespace dnurbs {
 
+/// The check of every size a shape generator takes (a radius, a length, a height): throws Error
+/// "<name> must be finite and > 0, got <value>" otherwise.
+void check_shape_size(double value, const char* name);
+
 /// The rational quadratic full circle of the given radius in the xy plane around `centre`:
 /// 9 control points on a square, weights 1 and sqrt(2)/2, knots
 /// {0,0,0,1/4,1/4,1/2,1/2,3/4,3/4,1,1,1}.

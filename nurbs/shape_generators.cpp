@@ -25,16 +25,10 @@ void check_count_and_degree(int count, int degree, const char* what) {
   }
 }
 
-void check_length(double length, const char* what) {
-  if (!std::isfinite(length) || !(length > 0.0)) {
-    throw make_error(what, " must be finite and > 0, got ", length);
-  }
-}
-
 // Clamped uniform knots over [0, length] with the given count and degree.
 KnotVector greville_knots(int count, int degree, double length, const char* what) {
   check_count_and_degree(count, degree, what);
-  check_length(length, what);
+  check_shape_size(length, what);
   return KnotVector::clamped_uniform(degree, count, 0.0, length);
 }
 
@@ -161,7 +155,7 @@ NurbsCurve greville_line(const Eigen::Vector3d& start, const Eigen::Vector3d& en
     throw make_error("line end points must be finite");
   }
   const double length = (end - start).norm();
-  check_length(length, "line length");
+  check_shape_size(length, "line length");
   const double extent = domain.value_or(length);
   KnotVector knots = greville_knots(control_points, degree, extent, "line domain");
   const Eigen::Vector3d step = (end - start) / extent;
@@ -187,8 +181,8 @@ NurbsSurface greville_plane(const Eigen::Vector2d& size, const Eigen::Vector2i& 
   if (!origin.allFinite()) {
     throw make_error("plane origin must be finite");
   }
-  check_length(size.x(), "plane size x");
-  check_length(size.y(), "plane size y");
+  check_shape_size(size.x(), "plane size x");
+  check_shape_size(size.y(), "plane size y");
   const Eigen::Vector2d extent = domain.value_or(size);
   KnotVector knots_u = greville_knots(control_points.x(), degree.x(), extent.x(), "plane domain x");
   KnotVector knots_v = greville_knots(control_points.y(), degree.y(), extent.y(), "plane domain y");
@@ -208,9 +202,9 @@ NurbsSurface greville_plane(const Eigen::Vector2d& size, const Eigen::Vector2i& 
 }
 
 NurbsSurface box(const Eigen::Vector3d& size) {
-  check_length(size.x(), "box size x");
-  check_length(size.y(), "box size y");
-  check_length(size.z(), "box size z");
+  check_shape_size(size.x(), "box size x");
+  check_shape_size(size.y(), "box size y");
+  check_shape_size(size.z(), "box size z");
   // Profile (radial factor, height) from the bottom centre over the side to the top centre, and
   // the square section from corner (+x, +y) counter-clockwise back to it.
   const double radial[4] = {0.0, 1.0, 1.0, 0.0};
@@ -229,15 +223,15 @@ NurbsSurface box(const Eigen::Vector3d& size) {
 }
 
 NurbsSurface cylinder(double radius, double height, int profile_control_points) {
-  check_length(radius, "cylinder radius");
-  check_length(height, "cylinder height");
+  check_shape_size(radius, "cylinder radius");
+  check_shape_size(height, "cylinder height");
   return surface_of_revolution(
       straight_profile(radius, 0.0, radius, height, profile_control_points));
 }
 
 NurbsSurface cone(double radius, double height, int profile_control_points) {
-  check_length(radius, "cone radius");
-  check_length(height, "cone height");
+  check_shape_size(radius, "cone radius");
+  check_shape_size(height, "cone height");
   return surface_of_revolution(straight_profile(radius, 0.0, 0.0, height, profile_control_points));
 }
 
@@ -288,7 +282,7 @@ NurbsSurface extrude(const NurbsCurve& curve, const Eigen::Vector3d& direction) 
     throw make_error("extrusion direction must be finite");
   }
   const double length = direction.norm();
-  check_length(length, "extrusion length");
+  check_shape_size(length, "extrusion length");
   const int n = curve.control_point_count();
   Eigen::MatrixX3d points(n * 2, 3);
   Eigen::VectorXd weights(n * 2);

@@ -9,28 +9,19 @@
 #include "nurbs/shape_generators.h"
 
 namespace dnurbs {
-namespace {
-
-void check_positive(double value, const char* name) {
-  if (!std::isfinite(value) || !(value > 0.0)) {
-    throw make_error(name, " must be finite and > 0, got ", value);
-  }
-}
-
-}  // namespace
 
 NurbsCurve unit_circle_trajectory() {
   return periodic_circle(1.0);
 }
 
 SwungSurface swung_sphere(double radius) {
-  check_positive(radius, "swung sphere radius");
+  check_shape_size(radius, "swung sphere radius");
   return SwungSurface(half_circle_xz(radius), unit_circle_trajectory());
 }
 
 SwungSurface swung_torus(double major_radius, double minor_radius) {
-  check_positive(major_radius, "swung torus major radius");
-  check_positive(minor_radius, "swung torus minor radius");
+  check_shape_size(major_radius, "swung torus major radius");
+  check_shape_size(minor_radius, "swung torus minor radius");
   if (!(minor_radius < major_radius)) {
     throw make_error("swung torus minor radius ", minor_radius, " must be below the major radius ",
                      major_radius);
@@ -65,21 +56,21 @@ SwungSurface swung_open_profile(double x0, double z0, double x1, double z1,
 }
 
 SwungSurface swung_cylinder(double radius, double height, int profile_control_points) {
-  check_positive(radius, "swung cylinder radius");
-  check_positive(height, "swung cylinder height");
+  check_shape_size(radius, "swung cylinder radius");
+  check_shape_size(height, "swung cylinder height");
   return swung_open_profile(radius, 0.0, radius, height, profile_control_points);
 }
 
 SwungSurface swung_cone(double radius, double height, int profile_control_points) {
-  check_positive(radius, "swung cone radius");
-  check_positive(height, "swung cone height");
+  check_shape_size(radius, "swung cone radius");
+  check_shape_size(height, "swung cone height");
   return swung_open_profile(radius, 0.0, 0.0, height, profile_control_points);
 }
 
 SwungSurface swung_hat(double brim_radius, double crown_radius, double height) {
-  check_positive(brim_radius, "swung hat brim radius");
-  check_positive(crown_radius, "swung hat crown radius");
-  check_positive(height, "swung hat height");
+  check_shape_size(brim_radius, "swung hat brim radius");
+  check_shape_size(crown_radius, "swung hat crown radius");
+  check_shape_size(height, "swung hat height");
   if (!(crown_radius < brim_radius)) {
     throw make_error("swung hat crown radius ", crown_radius, " must be below the brim radius ",
                      brim_radius);
