@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "io/atomic_write.h"
+#include "io/cad_file.h"
 #include "io/json_messages.h"
 
 namespace dnurbs {
@@ -347,6 +348,15 @@ Shape parse_shape_json(const std::string& text, const std::string& source) {
 }
 
 Shape read_shape_file(const std::filesystem::path& path) {
+  if (cad_format_of(path)) {
+    std::vector<Shape> shapes = read_cad_file(path);
+    if (shapes.size() != 1) {
+      throw make_error(path.string(), ": the file holds ", shapes.size(),
+                       " curves and surfaces, and a shape file is one; `dnurbs import ",
+                       path.filename().string(), " shape.json` writes each to its own file");
+    }
+    return std::move(shapes.front());
+  }
   return parse_shape_json(read_input_file(path, "shape file"), path.string());
 }
 

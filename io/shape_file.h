@@ -26,7 +26,9 @@ namespace dnurbs {
 /// key) every knot or weight error of the library.
 Shape parse_shape_json(const std::string& text, const std::string& source = "<string>");
 
-/// Reads a shape file; throws Error as parse_shape_json does, or if the file cannot be read.
+/// Reads a shape file; throws Error as parse_shape_json does, or if the file cannot be read. A
+/// STEP or IGES file (.step, .stp, .iges, .igs; io/cad_file.h) holding exactly one curve or
+/// surface reads as that shape; one holding several is refused, naming the count.
 Shape read_shape_file(const std::filesystem::path& path);
 
 /// The shape as JSON text (numbers round-trip exactly; weights are omitted when all are 1).

@@ -30,6 +30,8 @@ packages=(
   # three.js r111 for the page (served from /usr/share/javascript/three, never fetched), and
   # Chromium for the browser tests (tests/web)
   libboost-dev libjs-three chromium
+  # CAD exchange (cad/, docs/cad-exchange.md): Open CASCADE's STEP and IGES translators
+  libocct-data-exchange-dev
 )
 # Node.js runs the browser tests; a machine may already have it from elsewhere (NodeSource)
 if ! command -v node >/dev/null 2>&1; then
