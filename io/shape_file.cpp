@@ -360,6 +360,34 @@ Shape read_shape_file(const std::filesystem::path& path) {
   return parse_shape_json(read_input_file(path, "shape file"), path.string());
 }
 
+std::string shape_summary(const Shape& shape) {
+  std::ostringstream text;
+  if (const auto* surface = std::get_if<NurbsSurface>(&shape)) {
+    text << "nurbs_surface, " << surface->control_point_count_u() << " x "
+         << surface->control_point_count_v() << " control points, degrees " << surface->degree_u()
+         << " x " << surface->degree_v();
+    if (surface->is_rational()) {
+      text << ", rational";
+    }
+    const bool periodic_u = surface->knots_u().is_periodic();
+    const bool periodic_v = surface->knots_v().is_periodic();
+    if (periodic_u || periodic_v) {
+      text << ", periodic" << (periodic_u && periodic_v ? "" : periodic_u ? " in u" : " in v");
+    }
+  } else {
+    const auto& curve = std::get<NurbsCurve>(shape);
+    text << "nurbs_curve, " << curve.control_point_count() << " control points, degree "
+         << curve.degree();
+    if (curve.is_rational()) {
+      text << ", rational";
+    }
+    if (curve.is_periodic()) {
+      text << ", periodic";
+    }
+  }
+  return text.str();
+}
+
 std::string shape_to_json(const Shape& shape) {
   return std::visit([](const auto& value) { return to_json(value); }, shape);
 }

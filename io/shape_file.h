@@ -31,6 +31,10 @@ Shape parse_shape_json(const std::string& text, const std::string& source = "<st
 /// surface reads as that shape; one holding several is refused, naming the count.
 Shape read_shape_file(const std::filesystem::path& path);
 
+/// One line for people: "nurbs_surface, 9 x 7 control points, degrees 3 x 2" or "nurbs_curve,
+/// 8 control points, degree 3", with ", rational" and ", periodic" (", periodic in u") when so.
+std::string shape_summary(const Shape& shape);
+
 /// The shape as JSON text (numbers round-trip exactly; weights are omitted when all are 1).
 std::string shape_to_json(const Shape& shape);
 

@@ -11,6 +11,7 @@
 #include "tools/design_command.h"
 #include "tools/eval_command.h"
 #include "tools/fit_command.h"
+#include "tools/import_command.h"
 #include "tools/info_command.h"
 #include "tools/make_command.h"
 #include "tools/mesh_commands.h"
@@ -28,7 +29,9 @@ commands:
   info [SCENE.json]                models, coordinates, constant matrices, cost per step
   make KIND OUT.json [--KEY V...]  a shape file: line, plane, box, cylinder, cone, sphere, torus,
                                    revolve, extrude or loft (sheets and rods at rest)
-  export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb
+  export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb, or write
+                                   shapes as NURBS to .step/.stp/.iges/.igs
+  import PART OUT.json             the curves and surfaces of a STEP or IGES file as shape files
   preview MESH.obj OUT.png         shaded PNG of an OBJ mesh (python3 + matplotlib)
   fit superquadric|surface POINTS  fit a superquadric or a D-NURBS surface to points, as JSON
   design SCENE.json [--out DIR]    energy-minimizing static shape under forces and constraints
@@ -70,6 +73,9 @@ int main(int argc, char** argv) {
     }
     if (command == "make") {
       return make_command(rest, std::cout);
+    }
+    if (command == "import") {
+      return import_command(rest, std::cout);
     }
     if (command == "export") {
       return export_command(rest, std::cout);

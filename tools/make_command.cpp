@@ -105,15 +105,7 @@ int make_command(const std::vector<std::string>& arguments, std::ostream& out) {
   const SceneReader reader("command line", std::filesystem::current_path());
   const Shape shape = make_shape(reader, recipe, "");
   write_shape_file(output, shape);
-  if (const auto* surface = std::get_if<NurbsSurface>(&shape)) {
-    out << output << ": nurbs_surface, " << surface->control_point_count_u() << " x "
-        << surface->control_point_count_v() << " control points, degrees " << surface->degree_u()
-        << " x " << surface->degree_v() << "\n";
-  } else {
-    const auto& curve = std::get<NurbsCurve>(shape);
-    out << output << ": nurbs_curve, " << curve.control_point_count() << " control points, degree "
-        << curve.degree() << "\n";
-  }
+  out << output << ": " << shape_summary(shape) << "\n";
   return kExitOk;
 }
 

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "dynamics/triangular/triangular_tessellation.h"
+#include "io/cad_file.h"
 #include "io/mesh_export.h"
 #include "io/mesh_import.h"
 #include "io/preview.h"
@@ -28,6 +29,7 @@ namespace dnurbs::tools {
 const char* const kExportHelp =
     R"(usage: dnurbs export SHAPE.json MESH [--resolution N | --max-error E | --max-angle DEG]
                      [--compare] [--radius R] [--up-axis z|y]
+       dnurbs export SHAPE.json [SHAPE.json ...] PART.step|.stp|.iges|.igs
 
 Tessellates the curve or surface of a shape file and writes a triangle mesh. The format follows
 MESH's extension: .obj (default choice; with a .mtl), .stl, .ply, .gltf (with a .bin) or .glb.
@@ -37,6 +39,10 @@ multi-triangulation, crack-free) refined until every triangle is within E of the
 around N segments. A triangular_nurbs surface gets every domain triangle split into N x N
 triangles (default 4), or with --max-error E longest-edge bisection until its chord error is
 within E.
+
+To a STEP or IGES file, the shapes are written as they are, NURBS curves and surfaces with their
+knots, weights and control points to 17 digits (periodic ones closed and unclamped), for a CAD
+tool to read; `dnurbs import` reads them back exactly. The mesh options do not apply.
 
 options:
   --resolution N      segments per direction, 3..4096 (default 32 for surfaces, 128 for curves;
@@ -257,6 +263,21 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   }
   if (compare && !(max_error > 0.0)) {
     throw UsageError("--compare needs --max-error");
+  }
+  if (files.size() >= 2 && cad_format_of(files.back())) {
+    if (arguments.size() != files.size()) {
+      throw UsageError("the mesh options do not apply to a STEP or IGES file");
+    }
+    std::vector<Shape> shapes;
+    for (size_t k = 0; k + 1 < files.size(); ++k) {
+      shapes.push_back(read_shape_file(files[k]));
+    }
+    write_cad_file(files.back(), shapes);
+    for (size_t k = 0; k < shapes.size(); ++k) {
+      out << "wrote " << files[k] << " to " << files.back() << " (" << shape_summary(shapes[k])
+          << ")\n";
+    }
+    return kExitOk;
   }
   if (files.size() != 2) {
     throw UsageError("expected SHAPE.json and MESH, got " + std::to_string(files.size()) +

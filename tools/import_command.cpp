@@ -1,0 +1,73 @@
+#include "tools/import_command.h"
+
+#include <filesystem>
+
+#include "io/cad_file.h"
+#include "io/shape_file.h"
+#include "tools/command_line.h"
+
+namespace dnurbs::tools {
+
+const char* const kImportHelp = R"(usage: dnurbs import PART OUT.json [--index K]
+
+Reads the NURBS curves and surfaces of a STEP (.step, .stp) or IGES (.iges, .igs) file and writes
+each as a shape file: OUT.json for a file of one shape, else OUT-0.json, OUT-1.json, ... in the
+file's order (STEP: faces, then free edges). --index K writes only shape K, to OUT.json.
+
+Faces are read over their whole parameter rectangle: B-spline surfaces as they are, planes,
+cylinders, cones, spheres, tori and swept surfaces in their exact NURBS form. A trimmed face
+(bounded by anything but the border of its rectangle) is refused, naming its entity. Periodic
+curves and surfaces written by dnurbs (`dnurbs export`) come back periodic.
+
+options:
+  --index K   only shape K (0-based)
+)";
+
+int import_command(const std::vector<std::string>& arguments, std::ostream& out) {
+  if (wants_help(arguments)) {
+    out << kImportHelp;
+    return kExitOk;
+  }
+  std::vector<std::string> files;
+  int index = -1;
+  for (size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    if (argument == "--index") {
+      index = parse_int(flag_value(arguments, i), "--index", 0, 1 << 30);
+    } else if (argument.starts_with("-") && argument.size() > 1) {
+      throw UsageError("unknown option " + argument);
+    } else {
+      files.push_back(argument);
+    }
+  }
+  if (files.size() != 2) {
+    throw UsageError("expected PART and OUT.json, got " + std::to_string(files.size()) +
+                     " file arguments");
+  }
+  const std::filesystem::path output = files[1];
+  const std::vector<Shape> shapes = read_cad_file(files[0]);
+  if (index >= static_cast<int>(shapes.size())) {
+    throw UsageError("--index " + std::to_string(index) + ": " + files[0] + " holds " +
+                     std::to_string(shapes.size()) + " shapes (0.." +
+                     std::to_string(shapes.size() - 1) + ")");
+  }
+  const auto write = [&](const std::filesystem::path& path, const Shape& shape) {
+    write_shape_file(path, shape);
+    out << path.string() << ": " << shape_summary(shape) << "\n";
+  };
+  if (index >= 0) {
+    write(output, shapes[static_cast<size_t>(index)]);
+  } else if (shapes.size() == 1) {
+    write(output, shapes.front());
+  } else {
+    for (size_t k = 0; k < shapes.size(); ++k) {
+      std::filesystem::path path = output;
+      path.replace_filename(output.stem().string() + "-" + std::to_string(k) +
+                            output.extension().string());
+      write(path, shapes[k]);
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace dnurbs::tools
