@@ -161,7 +161,7 @@ Shape face_shape(const TopoDS_Face& face, const BrepGeometry& file_geometry) {
         lies_on_border(face, *bspline,
                        std::max(BRep_Tool::MaxTolerance(face, TopAbs_EDGE), Precision::Confusion()),
                        file_geometry)) {
-      return from_occt(*bspline);
+      return geometry ? *geometry : Shape(from_occt(*bspline));
     }
     throw Error(
         "it is trimmed (bounded by curves other than the border of its parameter rectangle); "
@@ -180,6 +180,8 @@ Shape face_shape(const TopoDS_Face& face, const BrepGeometry& file_geometry) {
     if (!same_range(box.u0, box.u1, u0, u1) || !same_range(box.v0, box.v1, v0, v1)) {
       bspline = Handle(Geom_BSplineSurface)::DownCast(bspline->Copy());
       bspline->Segment(box.u0, box.u1, box.v0, box.v1);
+    } else if (geometry) {
+      return *geometry;  // the file's own numbering of a periodic basis, kept
     }
   }
   return from_occt(*bspline);
@@ -198,6 +200,10 @@ Shape edge_shape(const TopoDS_Edge& edge, const BrepGeometry& file_geometry) {
   } else if (!same_range(first, last, bspline->FirstParameter(), bspline->LastParameter())) {
     bspline = Handle(Geom_BSplineCurve)::DownCast(bspline->Copy());
     bspline->Segment(first, last);
+  } else if (file_geometry) {
+    if (std::optional<Shape> geometry = file_geometry(edge)) {
+      return *geometry;  // the file's own numbering of a periodic basis, kept
+    }
   }
   return from_occt(*bspline);
 }

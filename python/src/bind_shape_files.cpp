@@ -1,9 +1,11 @@
 // Shape files (io/shape_file.h: NURBS curves and surfaces; io/triangular_shape_file.h: triangular
-// NURBS surfaces) and checkpoint files (io/checkpoint.h) read and written from Python.
+// NURBS surfaces), CAD files (io/cad_file.h: STEP and IGES) and checkpoint files
+// (io/checkpoint.h) read and written from Python.
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "io/cad_file.h"
 #include "io/checkpoint.h"
 #include "io/json_messages.h"
 #include "io/shape_file.h"
@@ -87,6 +89,33 @@ void bind_shape_files(py::module_& module) {
       },
       py::arg("path"), py::arg("shape"),
       "Writes a NurbsCurve or NurbsSurface to a shape file (atomically).");
+  module.def("cad_exchange_available", &cad_exchange_available,
+             "True if this dnurbs reads and writes STEP and IGES (built with Open CASCADE).");
+  module.def(
+      "read_cad_file",
+      [](const std::filesystem::path& path) {
+        py::list shapes;
+        for (const Shape& shape : read_cad_file(path)) {
+          shapes.append(shape_object(shape));
+        }
+        return shapes;
+      },
+      py::arg("path"),
+      "The NurbsCurves and NurbsSurfaces of a STEP (.step, .stp) or IGES (.iges, .igs) file, in "
+      "the file's order (STEP: faces, then free edges); raises dnurbs.Error naming a trimmed face "
+      "or an entity with no exact NURBS form.");
+  module.def(
+      "write_cad_file",
+      [](const std::filesystem::path& path, const py::iterable& shapes) {
+        std::vector<Shape> values;
+        for (const py::handle shape : shapes) {
+          values.push_back(shape_argument(py::reinterpret_borrow<py::object>(shape)));
+        }
+        write_cad_file(path, values);
+      },
+      py::arg("path"), py::arg("shapes"),
+      "Writes NurbsCurves and NurbsSurfaces to a STEP or IGES file by its extension (17-digit "
+      "numbers: read_cad_file gives them back exactly, periodic ones periodic).");
   module.def("parse_triangular_shape", &parse_triangular_shape_json, py::arg("text"),
              py::arg("source") = "<string>",
              "A TriangularNurbsSurface from triangular_nurbs shape JSON text.");

@@ -56,3 +56,26 @@ def test_bad_shape_files_raise_the_library_message(tmp_path):
         dnurbs.shape_to_json(42)
     with pytest.raises(TypeError):
         dnurbs.write_triangular_shape(tmp_path / "x.json", dnurbs.sphere(1.0))
+
+
+@pytest.mark.skipif(not dnurbs.cad_exchange_available(), reason="built without Open CASCADE")
+@pytest.mark.parametrize("name", ["part.step", "part.igs"])
+def test_cad_files_round_trip_exactly(name, tmp_path):
+    # A periodic torus (periodic in both directions, rational) and a clamped circle.
+    torus = dnurbs.periodic_torus(3.0, 1.0)
+    circle = dnurbs.full_circle(2.5, [1, 2, 3])
+    path = tmp_path / name
+    dnurbs.write_cad_file(path, [circle, torus])
+    shapes = dnurbs.read_cad_file(path)
+    assert len(shapes) == 2
+    # STEP lists faces before free edges; IGES keeps the order written.
+    surface, curve = (shapes[0], shapes[1]) if name.endswith(".step") else (shapes[1], shapes[0])
+    same_shape(surface, torus)
+    same_shape(curve, circle)
+    assert surface.knots_u.is_periodic and surface.knots_v.is_periodic
+    with pytest.raises(dnurbs.Error, match="holds 2 curves and surfaces"):
+        dnurbs.read_shape(path)
+    with pytest.raises(TypeError, match="shape is a int, must be a NurbsCurve or a NurbsSurface"):
+        dnurbs.write_cad_file(tmp_path / "bad.step", [1])
+    with pytest.raises(dnurbs.Error, match="not a CAD file name"):
+        dnurbs.write_cad_file(tmp_path / "bad.txt", [circle])
