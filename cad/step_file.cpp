@@ -26,6 +26,7 @@ std::string step_text(const std::vector<Shape>& shapes) {
     // Open forms: Open CASCADE's writer clamps a periodic shape by knot insertion, which moves
     // its control points by round-off (and loses its periodic knots).
     std::vector<Shape> written;
+    written.reserve(shapes.size());
     for (const Shape& shape : shapes) {
       written.push_back(
           std::visit([](const auto& value) { return Shape(open_form(value)); }, shape));

@@ -15,6 +15,7 @@
 #include "io/atomic_write.h"
 #include "io/cad_file.h"
 #include "io/json_messages.h"
+#include "io/obj_freeform.h"
 
 namespace dnurbs {
 namespace {
@@ -347,9 +348,24 @@ Shape parse_shape_json(const std::string& text, const std::string& source) {
   return ShapeReader(source).shape(parse_json_document(text, source));
 }
 
-Shape read_shape_file(const std::filesystem::path& path) {
+std::vector<Shape> read_exchange_shapes(const std::filesystem::path& path) {
   if (cad_format_of(path)) {
-    std::vector<Shape> shapes = read_cad_file(path);
+    return read_cad_file(path);
+  }
+  if (lowercase_extension(path) == ".obj") {
+    std::vector<Shape> shapes = read_obj_freeform_file(path);
+    if (shapes.empty()) {
+      throw make_error(path.string(),
+                       ": the OBJ file has no free-form curve or surface (curv or surf)");
+    }
+    return shapes;
+  }
+  return {read_shape_file(path)};
+}
+
+Shape read_shape_file(const std::filesystem::path& path) {
+  if (cad_format_of(path) || lowercase_extension(path) == ".obj") {
+    std::vector<Shape> shapes = read_exchange_shapes(path);
     if (shapes.size() != 1) {
       throw make_error(path.string(), ": the file holds ", shapes.size(),
                        " curves and surfaces, and a shape file is one; `dnurbs import ",

@@ -27,9 +27,14 @@ namespace dnurbs {
 Shape parse_shape_json(const std::string& text, const std::string& source = "<string>");
 
 /// Reads a shape file; throws Error as parse_shape_json does, or if the file cannot be read. A
-/// STEP or IGES file (.step, .stp, .iges, .igs; io/cad_file.h) holding exactly one curve or
-/// surface reads as that shape; one holding several is refused, naming the count.
+/// file of exchange_shapes (STEP, IGES, OBJ free-form) holding exactly one curve or surface
+/// reads as that shape; one holding several is refused, naming the count.
 Shape read_shape_file(const std::filesystem::path& path);
+
+/// Every curve and surface of an exchange file, by its extension: STEP or IGES (.step, .stp,
+/// .iges, .igs; io/cad_file.h) or OBJ free-form geometry (.obj; io/obj_freeform.h), or the one
+/// shape of a shape file (any other extension). Throws Error naming the file if it holds none.
+std::vector<Shape> read_exchange_shapes(const std::filesystem::path& path);
 
 /// One line for people: "nurbs_surface, 9 x 7 control points, degrees 3 x 2" or "nurbs_curve,
 /// 8 control points, degree 3", with ", rational" and ", periodic" (", periodic in u") when so.

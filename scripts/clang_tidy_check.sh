@@ -15,9 +15,13 @@ if [ ! -f "$build/compile_commands.json" ]; then
        "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON, as scripts/build.sh does)" >&2
   exit 1
 fi
-folders=(core nurbs surface vision dynamics constraints design io sculpt tools python)
+folders=(core nurbs surface vision dynamics constraints cad design io sculpt tools python)
 existing=()
 for folder in "${folders[@]}"; do
+  # cad/ only when the build compiled it (DNURBS_WITH_CAD, Open CASCADE found)
+  if [ "$folder" = cad ] && ! grep -q "/cad/" "$build/compile_commands.json"; then
+    continue
+  fi
   # python/ only when the build compiled the Python module (DNURBS_BUILD_PYTHON)
   if [ "$folder" = python ] && ! grep -q "/python/src/" "$build/compile_commands.json"; then
     continue

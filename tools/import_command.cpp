@@ -2,7 +2,6 @@
 
 #include <filesystem>
 
-#include "io/cad_file.h"
 #include "io/shape_file.h"
 #include "tools/command_line.h"
 
@@ -10,8 +9,8 @@ namespace dnurbs::tools {
 
 const char* const kImportHelp = R"(usage: dnurbs import PART OUT.json [--index K]
 
-Reads the NURBS curves and surfaces of a STEP (.step, .stp) or IGES (.iges, .igs) file and writes
-each as a shape file: OUT.json for a file of one shape, else OUT-0.json, OUT-1.json, ... in the
+Reads the NURBS curves and surfaces of a STEP (.step, .stp), IGES (.iges, .igs) or OBJ (.obj,
+its free-form curv and surf statements) file and writes each as a shape file: OUT.json for a file of one shape, else OUT-0.json, OUT-1.json, ... in the
 file's order (STEP: faces, then free edges). --index K writes only shape K, to OUT.json.
 
 Faces are read over their whole parameter rectangle: B-spline surfaces as they are, planes,
@@ -45,7 +44,7 @@ int import_command(const std::vector<std::string>& arguments, std::ostream& out)
                      " file arguments");
   }
   const std::filesystem::path output = files[1];
-  const std::vector<Shape> shapes = read_cad_file(files[0]);
+  const std::vector<Shape> shapes = read_exchange_shapes(files[0]);
   if (index >= static_cast<int>(shapes.size())) {
     throw UsageError("--index " + std::to_string(index) + ": " + files[0] + " holds " +
                      std::to_string(shapes.size()) + " shapes (0.." +

@@ -1,6 +1,6 @@
 #pragma once
 // `dnurbs import PART OUT.json [--index K]`: the curves and surfaces of a STEP or IGES file
-// (io/cad_file.h) as shape files, one per shape.
+// (io/cad_file.h) or of OBJ free-form geometry (io/obj_freeform.h) as shape files, one per shape.
 
 #include <ostream>
 #include <string>

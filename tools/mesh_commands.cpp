@@ -17,6 +17,7 @@
 #include "io/cad_file.h"
 #include "io/mesh_export.h"
 #include "io/mesh_import.h"
+#include "io/obj_freeform.h"
 #include "io/preview.h"
 #include "io/shape_file.h"
 #include "io/triangular_shape_file.h"
@@ -30,6 +31,7 @@ const char* const kExportHelp =
     R"(usage: dnurbs export SHAPE.json MESH [--resolution N | --max-error E | --max-angle DEG]
                      [--compare] [--radius R] [--up-axis z|y]
        dnurbs export SHAPE.json [SHAPE.json ...] PART.step|.stp|.iges|.igs
+       dnurbs export SHAPE.json [SHAPE.json ...] PART.obj --nurbs
 
 Tessellates the curve or surface of a shape file and writes a triangle mesh. The format follows
 MESH's extension: .obj (default choice; with a .mtl), .stl, .ply, .gltf (with a .bin) or .glb.
@@ -42,7 +44,8 @@ within E.
 
 To a STEP or IGES file, the shapes are written as they are, NURBS curves and surfaces with their
 knots, weights and control points to 17 digits (periodic ones closed and unclamped), for a CAD
-tool to read; `dnurbs import` reads them back exactly. The mesh options do not apply.
+tool to read; `dnurbs import` reads them back exactly. --nurbs writes them to an OBJ file the
+same way, as free-form curv and surf statements. The mesh options do not apply.
 
 options:
   --resolution N      segments per direction, 3..4096 (default 32 for surfaces, 128 for curves;
@@ -51,6 +54,7 @@ options:
                       in the shape's units), from the base grid that needs the fewest vertices
   --max-angle DEG     surfaces: adaptive mesh by the normals criterion, 0 < DEG <= 180
   --compare           with --max-error: also report the coarsest uniform grid meeting E
+  --nurbs             with a .obj file: NURBS (free-form geometry) instead of a mesh
   --radius R          tube radius for curves (default 1% of the control polygon's diagonal)
   --up-axis z|y       the up axis of .obj/.stl/.ply (default z, as dnurbs; y turns (x, y, z)
                       into (x, z, -y)); .gltf/.glb are always Y-up, as glTF 2.0 requires
@@ -224,6 +228,7 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   double max_error = 0.0;
   double max_angle_degrees = 0.0;
   bool compare = false;
+  bool nurbs = false;
   UpAxis up = UpAxis::kZ;
   for (size_t i = 0; i < arguments.size(); ++i) {
     const std::string& argument = arguments[i];
@@ -252,6 +257,8 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
       }
     } else if (argument == "--compare") {
       compare = true;
+    } else if (argument == "--nurbs") {
+      nurbs = true;
     } else if (argument.starts_with("-") && argument.size() > 1) {
       throw UsageError("unknown option " + argument);
     } else {
@@ -264,15 +271,22 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   if (compare && !(max_error > 0.0)) {
     throw UsageError("--compare needs --max-error");
   }
-  if (files.size() >= 2 && cad_format_of(files.back())) {
-    if (arguments.size() != files.size()) {
-      throw UsageError("the mesh options do not apply to a STEP or IGES file");
+  if (nurbs && (files.empty() || lowercase_extension(files.back()) != ".obj")) {
+    throw UsageError("--nurbs applies to a .obj file (STEP and IGES files are always NURBS)");
+  }
+  if (files.size() >= 2 && (nurbs || cad_format_of(files.back()))) {
+    if (arguments.size() != files.size() + (nurbs ? 1 : 0)) {
+      throw UsageError("the mesh options do not apply to NURBS in a STEP, IGES or OBJ file");
     }
     std::vector<Shape> shapes;
     for (size_t k = 0; k + 1 < files.size(); ++k) {
       shapes.push_back(read_shape_file(files[k]));
     }
-    write_cad_file(files.back(), shapes);
+    if (nurbs) {
+      write_obj_freeform_file(files.back(), shapes);
+    } else {
+      write_cad_file(files.back(), shapes);
+    }
     for (size_t k = 0; k < shapes.size(); ++k) {
       out << "wrote " << files[k] << " to " << files.back() << " (" << shape_summary(shapes[k])
           << ")\n";

@@ -8,6 +8,7 @@
 #include "io/cad_file.h"
 #include "io/checkpoint.h"
 #include "io/json_messages.h"
+#include "io/obj_freeform.h"
 #include "io/shape_file.h"
 #include "io/shape_recipe.h"
 #include "io/triangular_shape_file.h"
@@ -116,6 +117,30 @@ void bind_shape_files(py::module_& module) {
       py::arg("path"), py::arg("shapes"),
       "Writes NurbsCurves and NurbsSurfaces to a STEP or IGES file by its extension (17-digit "
       "numbers: read_cad_file gives them back exactly, periodic ones periodic).");
+  module.def(
+      "read_obj_freeform",
+      [](const std::filesystem::path& path) {
+        py::list shapes;
+        for (const Shape& shape : read_obj_freeform_file(path)) {
+          shapes.append(shape_object(shape));
+        }
+        return shapes;
+      },
+      py::arg("path"),
+      "The NurbsCurves and NurbsSurfaces of an OBJ file's free-form curv and surf statements, in "
+      "file order (meshes in the file are ignored); raises dnurbs.Error '<path>: line L: ...'.");
+  module.def(
+      "write_obj_freeform",
+      [](const std::filesystem::path& path, const py::iterable& shapes) {
+        std::vector<Shape> values;
+        for (const py::handle shape : shapes) {
+          values.push_back(shape_argument(py::reinterpret_borrow<py::object>(shape)));
+        }
+        write_obj_freeform_file(path, values);
+      },
+      py::arg("path"), py::arg("shapes"),
+      "Writes NurbsCurves and NurbsSurfaces as OBJ free-form geometry (exact numbers; periodic "
+      "ones in open form, read back periodic).");
   module.def("parse_triangular_shape", &parse_triangular_shape_json, py::arg("text"),
              py::arg("source") = "<string>",
              "A TriangularNurbsSurface from triangular_nurbs shape JSON text.");

@@ -79,3 +79,17 @@ def test_cad_files_round_trip_exactly(name, tmp_path):
         dnurbs.write_cad_file(tmp_path / "bad.step", [1])
     with pytest.raises(dnurbs.Error, match="not a CAD file name"):
         dnurbs.write_cad_file(tmp_path / "bad.txt", [circle])
+
+
+def test_obj_freeform_round_trips_exactly(tmp_path):
+    torus = dnurbs.periodic_torus(3.0, 1.0)
+    circle = dnurbs.full_circle(2.5, [1, 2, 3])
+    path = tmp_path / "part.obj"
+    dnurbs.write_obj_freeform(path, [circle, torus])
+    curve, surface = dnurbs.read_obj_freeform(path)
+    same_shape(curve, circle)
+    same_shape(surface, torus)
+    assert surface.knots_u.is_periodic and surface.knots_v.is_periodic
+    path.write_text("v 0 0 0\ncstype bezier\n")
+    with pytest.raises(dnurbs.Error, match="part.obj: line 2: "):
+        dnurbs.read_obj_freeform(path)

@@ -64,6 +64,33 @@ TEST(ImportCommand, ShapesGoToStepAndIgesAndComeBackUnchanged) {
   std::filesystem::remove_all(directory);
 }
 
+TEST(ImportCommand, NurbsGoToObjFreeFormAndComeBackUnchanged) {
+  const auto directory = fresh_directory("import_obj");
+  const std::string sheet = (directory / "sheet.json").string();
+  const std::string bowl = (directory / "bowl.json").string();
+  write_shape_file(sheet, Shape(greville_plane({2, 1}, {5, 4}, {3, 2})));
+  write_shape_file(bowl, Shape(revolve(half_circle_xz(2.0), 1.25)));
+  const std::string obj = (directory / "part.obj").string();
+  const auto exported = run_dnurbs("export " + sheet + " " + bowl + " " + obj + " --nurbs");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  EXPECT_THAT(testing::read_text(obj), HasSubstr("cstype rat bspline\ndeg 2 2\nsurf "));
+  const auto imported = run_dnurbs("import " + obj + " " + (directory / "out.json").string());
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_EQ(testing::read_text(directory / "out-0.json"), testing::read_text(sheet));
+  EXPECT_EQ(testing::read_text(directory / "out-1.json"), testing::read_text(bowl));
+  // A mesh OBJ holds no free-form shape.
+  const std::string mesh = (directory / "mesh.obj").string();
+  ASSERT_EQ(run_dnurbs("export " + sheet + " " + mesh).exit_code, 0);
+  const auto none = run_dnurbs("import " + mesh + " " + (directory / "none.json").string());
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_THAT(none.err, HasSubstr("mesh.obj: the OBJ file has no free-form curve or surface"));
+  const auto stl =
+      run_dnurbs("export " + sheet + " " + (directory / "x.stl").string() + " --nurbs");
+  EXPECT_EQ(stl.exit_code, 2);
+  EXPECT_THAT(stl.err, HasSubstr("--nurbs applies to a .obj file"));
+  std::filesystem::remove_all(directory);
+}
+
 TEST(ImportCommand, ATrimmedFaceMadeByOpenCascadeIsRefusedNamingIt) {
   // tests/data/cad/disc.step: a plane bounded by a circle, written by Open CASCADE 7.6.3.
   const auto directory = fresh_directory("import_trimmed");
@@ -86,7 +113,8 @@ TEST(ImportCommand, BadCommandLinesExitTwo) {
   const auto options =
       run_dnurbs("export " + ring + " " + (directory / "x.step").string() + " --resolution 8");
   EXPECT_EQ(options.exit_code, 2);
-  EXPECT_THAT(options.err, HasSubstr("the mesh options do not apply to a STEP or IGES file"));
+  EXPECT_THAT(options.err,
+              HasSubstr("the mesh options do not apply to NURBS in a STEP, IGES or OBJ file"));
   const auto missing = run_dnurbs("import " + (directory / "none.igs").string() + " out.json");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_THAT(missing.err, HasSubstr("none.igs: the IGES file does not exist"));
