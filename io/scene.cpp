@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "io/animated_gltf.h"
 #include "io/json_messages.h"
 #include "io/scene_reader.h"
 #include "io/scene_registry.h"
@@ -211,7 +212,7 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   const std::string path = "output";
   reader.object(output, path,
                 {"mesh_every", "format", "resolution", "final_mesh", "preview", "log_every",
-                 "checkpoint_every", "name", "shape_files", "up_axis"});
+                 "checkpoint_every", "name", "shape_files", "up_axis", "animation"});
   reader.integer_key(output, path, "mesh_every", o.mesh_every, 0, 100000000);
   if (const JsonValue* format = reader.find(output, "format")) {
     const std::initializer_list<const char*> formats = {"obj", "stl", "ply", "gltf", "glb"};
@@ -240,6 +241,12 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   reader.boolean_key(output, path, "final_mesh", o.final_mesh);
   reader.boolean_key(output, path, "preview", o.preview);
   reader.boolean_key(output, path, "shape_files", o.shape_files);
+  reader.boolean_key(output, path, "animation", o.animation);
+  if (o.animation && o.mesh_every == 0) {
+    reader.fail("output.animation",
+                "expected false when output.mesh_every is 0 (the animation "
+                "is made of the frames)");
+  }
   reader.integer_key(output, path, "log_every", o.log_every, 1, 100000000);
   reader.integer_key(output, path, "checkpoint_every", o.checkpoint_every, 0, 100000000);
   if (const JsonValue* name = reader.find(output, "name")) {
@@ -303,6 +310,13 @@ Scene read_scene(const SceneReader& reader, const JsonValue& root) {
   }
   if (const JsonValue* output = reader.find(root, "output")) {
     read_output(reader, *output, scene.output);
+    const SceneOutput& o = scene.output;
+    if (o.animation && scene.step_count() / o.mesh_every + 1 > kMaxAnimationFrames) {
+      reader.fail("output.animation",
+                  "the run has " + std::to_string(scene.step_count() / o.mesh_every + 1) +
+                      " frames, more than an animation holds (" +
+                      std::to_string(kMaxAnimationFrames) + "); raise output.mesh_every");
+    }
   }
   if (const JsonValue* design = reader.find(root, "design")) {
     read_design(reader, *design, scene.design.emplace());
@@ -400,7 +414,9 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
         {"log_every", o.log_every},
         {"checkpoint_every", o.checkpoint_every},
         {"name", o.name},
-        {"shape_files", o.shape_files}};
+        {"shape_files", o.shape_files},
+        {"up_axis", o.up_axis},
+        {"animation", o.animation}};
   }
   if (scene.design) {
     const SceneDesign& d = *scene.design;

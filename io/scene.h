@@ -97,7 +97,10 @@ struct SceneOutput {
   std::string up_axis = "z";
   int resolution = 24;  ///< mesh segments per direction
   bool final_mesh = true;
-  bool preview = false;        ///< PNG of the final mesh (the tool renders it)
+  bool preview = false;  ///< PNG of the final mesh (the tool renders it)
+  /// The frames (mesh_every > 0) also as one animated glTF, <name>_animation.glb
+  /// (io/animated_gltf.h)
+  bool animation = false;
   int log_every = 1;           ///< CSV rows every N steps (and the last step)
   int checkpoint_every = 0;    ///< checkpoint.json every N steps (0: only the final state)
   std::string name = "scene";  ///< file stem of the final mesh, preview

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "io/animated_gltf.h"
 #include "io/atomic_write.h"
 #include "io/csv_log.h"
 #include "io/mesh_export.h"
@@ -54,6 +55,16 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
 
   SceneRunResult result;
   result.total_steps = scene.step_count();
+  GltfAnimation animation;
+  // A frame in the frame format and, with output.animation, in the animation.
+  const auto write_frame = [&](int step) {
+    const std::vector<TriangleMesh> meshes = simulation.meshes(resolution);
+    export_meshes(meshes, frame_path(directory, output, step), up);
+    ++result.frames_written;
+    if (output.animation) {
+      animation.add_frame(simulation.system().time(), meshes);
+    }
+  };
   result.log = output_file_path(directory, "log.csv");
   CsvLog log(simulation.log_columns());
   if (options.resume) {
@@ -67,8 +78,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
   } else {
     log.add_row(0, simulation.log_row(simulation.sample()));
     if (output.mesh_every > 0) {
-      export_meshes(simulation.meshes(resolution), frame_path(directory, output, 0), up);
-      ++result.frames_written;
+      write_frame(0);
     }
   }
 
@@ -78,6 +88,10 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
     write_checkpoint_file(result.checkpoint, simulation.checkpoint());
   };
   const auto write_final_mesh = [&]() {
+    if (output.animation && animation.frame_count() > 0) {
+      result.animation = output_file_path(directory, output.name + "_animation.glb");
+      animation.write(result.animation);
+    }
     if (output.final_mesh) {
       const std::vector<TriangleMesh> meshes = simulation.meshes(resolution);
       result.final_meshes.clear();
@@ -128,8 +142,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
       log.add_row(step, simulation.log_row(simulation.sample()));
     }
     if (output.mesh_every > 0 && step % output.mesh_every == 0) {
-      export_meshes(simulation.meshes(resolution), frame_path(directory, output, step), up);
-      ++result.frames_written;
+      write_frame(step);
     }
     if (output.checkpoint_every > 0 && step % output.checkpoint_every == 0 &&
         step < result.total_steps) {
