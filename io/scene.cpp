@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "io/animated_gltf.h"
+#include "io/cad_file.h"
 #include "io/json_messages.h"
 #include "io/scene_reader.h"
 #include "io/scene_registry.h"
@@ -212,7 +213,7 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   const std::string path = "output";
   reader.object(output, path,
                 {"mesh_every", "format", "resolution", "final_mesh", "preview", "log_every",
-                 "checkpoint_every", "name", "shape_files", "up_axis", "animation"});
+                 "checkpoint_every", "name", "shape_files", "up_axis", "animation", "cad_format"});
   reader.integer_key(output, path, "mesh_every", o.mesh_every, 0, 100000000);
   if (const JsonValue* format = reader.find(output, "format")) {
     const std::initializer_list<const char*> formats = {"obj", "stl", "ply", "gltf", "glb"};
@@ -242,6 +243,14 @@ void read_output(const SceneReader& reader, const JsonValue& output, SceneOutput
   reader.boolean_key(output, path, "preview", o.preview);
   reader.boolean_key(output, path, "shape_files", o.shape_files);
   reader.boolean_key(output, path, "animation", o.animation);
+  if (const JsonValue* cad = reader.find(output, "cad_format")) {
+    o.cad_format = reader.choice(*cad, "output.cad_format", {"step", "iges", "obj"});
+    if (o.cad_format != "obj" && !cad_exchange_available()) {
+      reader.fail("output.cad_format", "\"" + o.cad_format +
+                                           "\" needs dnurbs built with Open CASCADE "
+                                           "(libocct-data-exchange-dev); \"obj\" needs nothing");
+    }
+  }
   if (o.animation && o.mesh_every == 0) {
     reader.fail("output.animation",
                 "expected false when output.mesh_every is 0 (the animation "
@@ -417,6 +426,9 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
         {"shape_files", o.shape_files},
         {"up_axis", o.up_axis},
         {"animation", o.animation}};
+    if (!o.cad_format.empty()) {
+      root["output"]["cad_format"] = o.cad_format;
+    }
   }
   if (scene.design) {
     const SceneDesign& d = *scene.design;

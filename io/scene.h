@@ -105,6 +105,9 @@ struct SceneOutput {
   int checkpoint_every = 0;    ///< checkpoint.json every N steps (0: only the final state)
   std::string name = "scene";  ///< file stem of the final mesh, preview
   bool shape_files = false;    ///< the final exact shapes as shape files <model name>.json
+  /// The final exact shapes of every model together as NURBS in one CAD file: "" (none), "step"
+  /// (<name>.step), "iges" (<name>.igs) or "obj" (free-form geometry, <name>_nurbs.obj)
+  std::string cad_format;
   bool operator==(const SceneOutput&) const = default;
 };
 

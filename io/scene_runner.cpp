@@ -8,8 +8,10 @@
 #include "core/error.h"
 #include "io/animated_gltf.h"
 #include "io/atomic_write.h"
+#include "io/cad_file.h"
 #include "io/csv_log.h"
 #include "io/mesh_export.h"
+#include "io/obj_freeform.h"
 #include "io/output_path.h"
 #include "io/shape_file.h"
 
@@ -33,6 +35,71 @@ void create_output_directory(const std::filesystem::path& directory) {
   std::filesystem::create_directories(directory, error);
   if (error) {
     throw make_error(directory.string(), ": cannot create the output directory: ", error.message());
+  }
+}
+
+/// Where and how the final outputs are written.
+struct FinalOutputPlace {
+  const std::filesystem::path& directory;
+  int resolution = 0;
+  UpAxis up = UpAxis::kZ;
+};
+
+/// The final shapes of every model that has an exact one (D-NURBS curves and surfaces).
+std::vector<std::pair<int, Shape>> final_shapes(const SceneSimulation& simulation) {
+  std::vector<std::pair<int, Shape>> shapes;
+  for (int i = 0; i < simulation.system().model_count(); ++i) {
+    if (std::optional<Shape> shape = simulation.shape(i)) {
+      shapes.emplace_back(i, std::move(*shape));
+    }
+  }
+  return shapes;
+}
+
+/// The run's animation, final meshes, CAD file and shape files, as the scene's output asks.
+void write_final_outputs(const SceneSimulation& simulation, const FinalOutputPlace& place,
+                         const GltfAnimation& animation, SceneRunResult& result) {
+  const Scene& scene = simulation.scene();
+  const SceneOutput& output = scene.output;
+  if (output.animation && animation.frame_count() > 0) {
+    result.animation = output_file_path(place.directory, output.name + "_animation.glb");
+    animation.write(result.animation);
+  }
+  if (output.final_mesh) {
+    const std::vector<TriangleMesh> meshes = simulation.meshes(place.resolution);
+    result.final_meshes.clear();
+    for (const std::string& format : output.formats) {
+      result.final_meshes.push_back(output_file_path(place.directory, output.name + "." + format));
+      export_meshes(meshes, result.final_meshes.back(), place.up);
+    }
+    result.final_mesh = result.final_meshes.front();
+  }
+  const std::vector<std::pair<int, Shape>> shapes = final_shapes(simulation);
+  if (!output.cad_format.empty() && !shapes.empty()) {
+    std::vector<Shape> values;
+    values.reserve(shapes.size());
+    for (const auto& [model, shape] : shapes) {
+      values.push_back(shape);
+    }
+    const bool obj = output.cad_format == "obj";
+    const char* suffix = obj ? "_nurbs.obj" : output.cad_format == "step" ? ".step" : ".igs";
+    result.cad_file = output_file_path(place.directory, output.name + suffix);
+    if (obj) {
+      write_obj_freeform_file(result.cad_file, values);
+    } else {
+      write_cad_file(result.cad_file, values);
+    }
+  }
+  if (output.shape_files) {
+    for (const auto& [model, shape] : shapes) {
+      // A model name is any string: one that is not a plain file name becomes model<i>
+      const auto path = output_file_path(
+          place.directory, output_file_stem(scene.models[static_cast<size_t>(model)].name,
+                                            "model" + std::to_string(model)) +
+                               ".json");
+      write_shape_file(path, shape);
+      result.shape_files.push_back(path);
+    }
   }
 }
 
@@ -88,32 +155,7 @@ SceneRunResult run_scene(SceneSimulation& simulation, const SceneRunOptions& opt
     write_checkpoint_file(result.checkpoint, simulation.checkpoint());
   };
   const auto write_final_mesh = [&]() {
-    if (output.animation && animation.frame_count() > 0) {
-      result.animation = output_file_path(directory, output.name + "_animation.glb");
-      animation.write(result.animation);
-    }
-    if (output.final_mesh) {
-      const std::vector<TriangleMesh> meshes = simulation.meshes(resolution);
-      result.final_meshes.clear();
-      for (const std::string& format : output.formats) {
-        result.final_meshes.push_back(output_file_path(directory, output.name + "." + format));
-        export_meshes(meshes, result.final_meshes.back(), up);
-      }
-      result.final_mesh = result.final_meshes.front();
-    }
-    if (output.shape_files) {
-      for (int i = 0; i < simulation.system().model_count(); ++i) {
-        if (std::optional<Shape> shape = simulation.shape(i)) {
-          // A model name is any string: one that is not a plain file name becomes model<i>
-          const auto path = output_file_path(
-              directory, output_file_stem(scene.models[static_cast<size_t>(i)].name,
-                                          "model" + std::to_string(i)) +
-                             ".json");
-          write_shape_file(path, *shape);
-          result.shape_files.push_back(path);
-        }
-      }
-    }
+    write_final_outputs(simulation, {directory, resolution, up}, animation, result);
   };
 
   while (simulation.steps_done() < result.total_steps) {

@@ -51,6 +51,7 @@ struct SceneRunResult {
   std::filesystem::path final_mesh;  ///< the first of final_meshes; empty if none was written
   std::vector<std::filesystem::path> final_meshes;  ///< one per output format
   std::vector<std::filesystem::path> shape_files;   ///< final D-NURBS shapes written
+  std::filesystem::path cad_file;  ///< the final shapes as NURBS (output.cad_format), or empty
   /// <name>_animation.glb with output.animation, the frames of this run (of a resumed run, the
   /// frames from the resume on); empty if none was written
   std::filesystem::path animation;

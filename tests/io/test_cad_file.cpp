@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "io/models/dnurbs_scene.h"
 #include "io/scene.h"
+#include "io/scene_runner.h"
 #include "io/shape_file.h"
 #include "nurbs/primitive_shapes.h"
 #include "tests/common/error_message.h"
@@ -112,6 +113,44 @@ TEST(CadFile, AScenesShapeFileMayBeAStepFile) {
   EXPECT_EQ(spec.surface->control_points(),
             std::get<NurbsSurface>(sample_shapes()[1]).control_points());
   EXPECT_EQ(spec.shape_file, "sheet.step");
+}
+
+TEST(CadFile, ARunWritesItsFinalShapesToOneCadFile) {
+  const auto directory = fresh_directory("run");
+  write_shape_file(directory / "sheet.json", sample_shapes()[1]);
+  write_shape_file(directory / "arc.json", sample_shapes()[0]);
+  for (const std::string format : {"step", "iges", "obj"}) {
+    std::ofstream(directory / "scene.json") << R"json({"models": [
+      {"name": "sheet", "type": "dnurbs_surface", "shape_file": "sheet.json",
+       "material": {"mass_density": 1, "a10": 1, "a01": 1}},
+      {"name": "arc", "type": "dnurbs_curve", "shape_file": "arc.json",
+       "material": {"mass_density": 1, "tension": 1}}],
+      "run": {"steps": 3}, "output": {"name": "part", "cad_format": ")json"
+                                            << format << R"json("}})json";
+    SceneSimulation simulation(read_scene_file(directory / "scene.json"));
+    SceneRunOptions options;
+    options.output_directory = directory / ("out_" + format);
+    const SceneRunResult result = run_scene(simulation, options);
+    const std::string name = format == "step"   ? "part.step"
+                             : format == "iges" ? "part.igs"
+                                                : "part_nurbs.obj";
+    ASSERT_EQ(result.cad_file, options.output_directory / name);
+    const std::vector<Shape> shapes = read_exchange_shapes(result.cad_file);
+    ASSERT_EQ(shapes.size(), 2U) << format;
+    // The models' final shapes, moved by 3 steps of tension, exactly.
+    const NurbsSurface final_sheet = std::get<NurbsSurface>(*simulation.shape(0));
+    const NurbsCurve final_arc = std::get<NurbsCurve>(*simulation.shape(1));
+    EXPECT_NE(final_arc.control_points(),
+              std::get<NurbsCurve>(sample_shapes()[0]).control_points());
+    EXPECT_EQ(std::get<NurbsSurface>(shapes[0]).control_points(), final_sheet.control_points());
+    EXPECT_EQ(std::get<NurbsCurve>(shapes[1]).control_points(), final_arc.control_points());
+    EXPECT_EQ(std::get<NurbsCurve>(shapes[1]).weights(), final_arc.weights());
+  }
+  std::ofstream(directory / "bad.json") << R"json({"models": [
+      {"name": "arc", "type": "dnurbs_curve", "shape_file": "arc.json"}],
+    "run": {"steps": 1}, "output": {"cad_format": "dxf"}})json";
+  EXPECT_THAT(testing::error_message([&] { read_scene_file(directory / "bad.json"); }),
+              HasSubstr("output.cad_format: expected one of"));
 }
 
 TEST(CadFile, BadNamesAndFilesAreRefusedWithTheirName) {
