@@ -1,11 +1,14 @@
 // libFuzzer target: the shape-file readers, tensor-product (parse_shape_json) and triangular
-// (parse_triangular_shape_json), each followed by its writer's round trip. Both readers see
-// every input: each must refuse the other's files with an Error.
+// (parse_triangular_shape_json), and the OBJ free-form reader (parse_obj_freeform), each
+// followed by its writer's round trip. Every reader sees every input: each must refuse the
+// others' files with an Error (an OBJ file without curv or surf reads as no shapes).
 
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "fuzz/fuzz_support.h"
+#include "io/obj_freeform.h"
 #include "io/shape_file.h"
 #include "io/triangular_shape_file.h"
 
@@ -31,6 +34,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           return dnurbs::parse_triangular_shape_json(json, "written.json");
         },
         "triangular shape");
+  } catch (const dnurbs::Error&) {
+  }
+  try {
+    const std::string written =
+        dnurbs::shapes_to_obj(dnurbs::parse_obj_freeform(text, "fuzz.obj"));
+    dnurbs::fuzz::round_trip_is_fixed_point(
+        written,
+        [](const std::vector<dnurbs::Shape>& shapes) { return dnurbs::shapes_to_obj(shapes); },
+        [](const std::string& obj) { return dnurbs::parse_obj_freeform(obj, "written.obj"); },
+        "OBJ free-form");
   } catch (const dnurbs::Error&) {
   }
   return 0;

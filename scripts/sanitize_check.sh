@@ -20,6 +20,8 @@ cmake --build "$build" --parallel "$jobs" --target test_io test_sculpt dnurbs_to
   fuzz_scene_reader fuzz_shape_reader fuzz_checkpoint_reader fuzz_mesh_import
 # Any sanitizer report fails the run
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+# Open CASCADE's process-lifetime allocations (scripts/lsan_suppressions.txt)
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan_suppressions.txt"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 (cd "$build" && ctest -L "^(io|sculpt)$" --output-on-failure --parallel "$jobs")
 dnurbs="$build/tools/dnurbs"

@@ -13,8 +13,11 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_BezierCurve.hxx>
 #include <Geom_Circle.hxx>
 #include <IGESControl_Writer.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
@@ -94,6 +97,24 @@ TEST(IgesFile, ATrimmedSurfaceIsRefusedNamingItsEntity) {
   const std::string message = testing::error_message([&] { read_iges_file(path); });
   EXPECT_THAT(message, ::testing::HasSubstr(path.string() + ": face 0 D"));
   EXPECT_THAT(message, ::testing::HasSubstr("it is trimmed"));
+}
+
+TEST(IgesFile, AnEntityNoNurbsOfDnurbsCanHoldIsRefusedNamingIt) {
+  // A degree-20 curve (Open CASCADE allows 25, dnurbs 15), written by Open CASCADE.
+  TColgp_Array1OfPnt poles(1, 21);
+  for (int i = 1; i <= 21; ++i) {
+    poles(i) = gp_Pnt(i, std::sin(i), 0.0);
+  }
+  const auto path = testing::fresh_cad_directory("iges_degree") / "degree20.igs";
+  silence_occt_messages();
+  IGESControl_Writer writer("MM", 0);
+  ASSERT_TRUE(writer.AddGeom(GeomConvert::CurveToBSplineCurve(new Geom_BezierCurve(poles))));
+  writer.ComputeModel();
+  ASSERT_TRUE(writer.Write(path.string().c_str()));
+  EXPECT_THAT(testing::error_message([&] { read_iges_file(path); }),
+              ::testing::HasSubstr(path.string() +
+                                   ": entity D1 (IGESGeom_BSplineCurve): degree 20 is outside "
+                                   "1..15"));
 }
 
 TEST(IgesFile, ABrokenFileIsRefusedNamingIt) {
