@@ -208,6 +208,18 @@ Shape edge_shape(const TopoDS_Edge& edge, const BrepGeometry& file_geometry) {
   return from_occt(*bspline);
 }
 
+/// The shape `read` gives for a face or edge, its errors prefixed with `what` (the part's name).
+Shape named_part(const std::string& what, const std::function<Shape()>& read) {
+  try {
+    return read();
+  } catch (const Error& error) {
+    throw make_error(what, ": ", error.what());
+  } catch (const Standard_Failure& failure) {
+    throw make_error(
+        what, ": it has no exact NURBS form (Open CASCADE: ", failure.GetMessageString(), ")");
+  }
+}
+
 }  // namespace
 
 std::vector<Shape> shapes_from_brep(const TopoDS_Shape& brep, const std::string& source,
@@ -226,16 +238,9 @@ std::vector<Shape> shapes_from_brep(const TopoDS_Shape& brep, const std::string&
   for (TopExp_Explorer explorer(brep, TopAbs_FACE); explorer.More(); explorer.Next(), ++index) {
     const TopoDS_Face& face = TopoDS::Face(explorer.Current());
     const Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
-    const std::string what =
-        name("face", index, face, surface.IsNull() ? "no surface" : type_name(surface));
-    try {
-      shapes.push_back(face_shape(face, file_geometry));
-    } catch (const Error& error) {
-      throw make_error(what, ": ", error.what());
-    } catch (const Standard_Failure& failure) {
-      throw make_error(
-          what, ": it has no exact NURBS form (Open CASCADE: ", failure.GetMessageString(), ")");
-    }
+    shapes.push_back(
+        named_part(name("face", index, face, surface.IsNull() ? "no surface" : type_name(surface)),
+                   [&] { return face_shape(face, file_geometry); }));
   }
   index = 0;
   for (TopExp_Explorer explorer(brep, TopAbs_EDGE, TopAbs_FACE); explorer.More();
@@ -247,16 +252,9 @@ std::vector<Shape> shapes_from_brep(const TopoDS_Shape& brep, const std::string&
     double first = 0.0;
     double last = 0.0;
     const Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);
-    const std::string what =
-        name("edge", index, edge, curve.IsNull() ? "no curve" : type_name(curve));
-    try {
-      shapes.push_back(edge_shape(edge, file_geometry));
-    } catch (const Error& error) {
-      throw make_error(what, ": ", error.what());
-    } catch (const Standard_Failure& failure) {
-      throw make_error(
-          what, ": it has no exact NURBS form (Open CASCADE: ", failure.GetMessageString(), ")");
-    }
+    shapes.push_back(
+        named_part(name("edge", index, edge, curve.IsNull() ? "no curve" : type_name(curve)),
+                   [&] { return edge_shape(edge, file_geometry); }));
   }
   return shapes;
 }

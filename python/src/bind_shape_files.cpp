@@ -35,6 +35,22 @@ Shape shape_argument(const py::object& value) {
                        ", must be a NurbsCurve or a NurbsSurface");
 }
 
+py::list shape_list(const std::vector<Shape>& shapes) {
+  py::list list;
+  for (const Shape& shape : shapes) {
+    list.append(shape_object(shape));
+  }
+  return list;
+}
+
+std::vector<Shape> shape_arguments(const py::iterable& shapes) {
+  std::vector<Shape> values;
+  for (const py::handle shape : shapes) {
+    values.push_back(shape_argument(py::reinterpret_borrow<py::object>(shape)));
+  }
+  return values;
+}
+
 }  // namespace
 
 Checkpoint checkpoint_from_dict(const py::dict& values) {
@@ -94,13 +110,7 @@ void bind_shape_files(py::module_& module) {
              "True if this dnurbs reads and writes STEP and IGES (built with Open CASCADE).");
   module.def(
       "read_cad_file",
-      [](const std::filesystem::path& path) {
-        py::list shapes;
-        for (const Shape& shape : read_cad_file(path)) {
-          shapes.append(shape_object(shape));
-        }
-        return shapes;
-      },
+      [](const std::filesystem::path& path) { return shape_list(read_cad_file(path)); },
       py::arg("path"),
       "The NurbsCurves and NurbsSurfaces of a STEP (.step, .stp) or IGES (.iges, .igs) file, in "
       "the file's order (STEP: faces, then free edges); raises dnurbs.Error naming a trimmed face "
@@ -108,35 +118,21 @@ void bind_shape_files(py::module_& module) {
   module.def(
       "write_cad_file",
       [](const std::filesystem::path& path, const py::iterable& shapes) {
-        std::vector<Shape> values;
-        for (const py::handle shape : shapes) {
-          values.push_back(shape_argument(py::reinterpret_borrow<py::object>(shape)));
-        }
-        write_cad_file(path, values);
+        write_cad_file(path, shape_arguments(shapes));
       },
       py::arg("path"), py::arg("shapes"),
       "Writes NurbsCurves and NurbsSurfaces to a STEP or IGES file by its extension (17-digit "
       "numbers: read_cad_file gives them back exactly, periodic ones periodic).");
   module.def(
       "read_obj_freeform",
-      [](const std::filesystem::path& path) {
-        py::list shapes;
-        for (const Shape& shape : read_obj_freeform_file(path)) {
-          shapes.append(shape_object(shape));
-        }
-        return shapes;
-      },
+      [](const std::filesystem::path& path) { return shape_list(read_obj_freeform_file(path)); },
       py::arg("path"),
       "The NurbsCurves and NurbsSurfaces of an OBJ file's free-form curv and surf statements, in "
       "file order (meshes in the file are ignored); raises dnurbs.Error '<path>: line L: ...'.");
   module.def(
       "write_obj_freeform",
       [](const std::filesystem::path& path, const py::iterable& shapes) {
-        std::vector<Shape> values;
-        for (const py::handle shape : shapes) {
-          values.push_back(shape_argument(py::reinterpret_borrow<py::object>(shape)));
-        }
-        write_obj_freeform_file(path, values);
+        write_obj_freeform_file(path, shape_arguments(shapes));
       },
       py::arg("path"), py::arg("shapes"),
       "Writes NurbsCurves and NurbsSurfaces as OBJ free-form geometry (exact numbers; periodic "
