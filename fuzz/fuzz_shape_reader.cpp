@@ -37,8 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const dnurbs::Error&) {
   }
   try {
-    const std::string written =
-        dnurbs::shapes_to_obj(dnurbs::parse_obj_freeform(text, "fuzz.obj"));
+    const std::string written = dnurbs::shapes_to_obj(dnurbs::parse_obj_freeform(text, "fuzz.obj"));
     dnurbs::fuzz::round_trip_is_fixed_point(
         written,
         [](const std::vector<dnurbs::Shape>& shapes) { return dnurbs::shapes_to_obj(shapes); },
