@@ -84,16 +84,20 @@ bool is_parameter_rectangle(const TopoDS_Face& face, const ParameterBox& box) {
   return true;
 }
 
-/// The edge's 3-D curve and range: its file's geometry when `file_geometry` gives one, else
-/// Open CASCADE's.
-Handle(Geom_Curve) edge_curve(const TopoDS_Edge& edge, const BrepGeometry& file_geometry,
-                              double& first, double& last) {
-  Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);
-  const std::optional<Shape> geometry = file_geometry ? file_geometry(edge) : std::nullopt;
+/// The curve of an edge's file geometry (`file_geometry`), if it gives one.
+std::optional<NurbsCurve> file_curve(const TopoDS_Edge& edge, const BrepGeometry& file_geometry) {
+  std::optional<Shape> geometry = file_geometry ? file_geometry(edge) : std::nullopt;
   if (geometry && std::holds_alternative<NurbsCurve>(*geometry)) {
-    curve = to_occt(std::get<NurbsCurve>(*geometry));
+    return std::get<NurbsCurve>(std::move(*geometry));
   }
-  return curve;
+  return std::nullopt;
+}
+
+/// The edge's 3-D curve and range: `file` (its file's geometry) when given, else Open CASCADE's.
+Handle(Geom_Curve) edge_curve(const TopoDS_Edge& edge, const std::optional<NurbsCurve>& file,
+                              double& first, double& last) {
+  const Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);
+  return file ? Handle(Geom_Curve)(to_occt(*file)) : curve;
 }
 
 /// True if every boundary edge of the face (a single wire) lies, in space, on the four border
@@ -117,7 +121,7 @@ bool lies_on_border(const TopoDS_Face& face, const Geom_BSplineSurface& surface,
     }
     double first = 0.0;
     double last = 0.0;
-    const Handle(Geom_Curve) curve = edge_curve(edge, file_geometry, first, last);
+    const Handle(Geom_Curve) curve = edge_curve(edge, file_curve(edge, file_geometry), first, last);
     if (curve.IsNull()) {
       return false;
     }
@@ -190,7 +194,8 @@ Shape face_shape(const TopoDS_Face& face, const BrepGeometry& file_geometry) {
 Shape edge_shape(const TopoDS_Edge& edge, const BrepGeometry& file_geometry) {
   double first = 0.0;
   double last = 0.0;
-  const Handle(Geom_Curve) curve = edge_curve(edge, file_geometry, first, last);
+  const std::optional<NurbsCurve> file = file_curve(edge, file_geometry);
+  const Handle(Geom_Curve) curve = edge_curve(edge, file, first, last);
   if (curve.IsNull()) {
     throw Error("it has no 3-D curve");
   }
@@ -200,10 +205,8 @@ Shape edge_shape(const TopoDS_Edge& edge, const BrepGeometry& file_geometry) {
   } else if (!same_range(first, last, bspline->FirstParameter(), bspline->LastParameter())) {
     bspline = Handle(Geom_BSplineCurve)::DownCast(bspline->Copy());
     bspline->Segment(first, last);
-  } else if (file_geometry) {
-    if (std::optional<Shape> geometry = file_geometry(edge)) {
-      return *geometry;  // the file's own numbering of a periodic basis, kept
-    }
+  } else if (file) {
+    return *file;  // the file's own numbering of a periodic basis, kept
   }
   return from_occt(*bspline);
 }

@@ -133,10 +133,11 @@ std::string iges_text(const std::vector<Shape>& shapes) {
   with_occt_errors("writing IGES", [&] {
     IGESControl_Writer writer(kUnit, 0);
     for (const Shape& shape : shapes) {
-      if (const auto* curve = std::get_if<NurbsCurve>(&shape)) {
-        writer.AddGeom(to_occt(open_form(*curve)));
+      const Shape open = open_form(shape);
+      if (const auto* curve = std::get_if<NurbsCurve>(&open)) {
+        writer.AddGeom(to_occt(*curve));
       } else {
-        writer.AddGeom(to_occt(open_form(std::get<NurbsSurface>(shape))));
+        writer.AddGeom(to_occt(std::get<NurbsSurface>(open)));
       }
     }
     writer.ComputeModel();

@@ -9,7 +9,6 @@
 #include <XSControl_WorkSession.hxx>
 
 #include <sstream>
-#include <variant>
 
 #include "cad/brep_shapes.h"
 #include "cad/exchange_reader.h"
@@ -28,8 +27,7 @@ std::string step_text(const std::vector<Shape>& shapes) {
     std::vector<Shape> written;
     written.reserve(shapes.size());
     for (const Shape& shape : shapes) {
-      written.push_back(
-          std::visit([](const auto& value) { return Shape(open_form(value)); }, shape));
+      written.push_back(open_form(shape));
     }
     STEPControl_Writer writer;
     if (writer.Transfer(brep_from_shapes(written), STEPControl_AsIs) != IFSelect_RetDone) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "core/error.h"
@@ -101,6 +102,10 @@ NurbsSurface open_form(const NurbsSurface& surface) {
     }
   }
   return {open_basis(surface.knots_u()), open_basis(surface.knots_v()), points, weights};
+}
+
+Shape open_form(const Shape& shape) {
+  return std::visit([](const auto& value) { return Shape(open_form(value)); }, shape);
 }
 
 NurbsCurve periodic_form(const NurbsCurve& curve) {

@@ -6,6 +6,7 @@
 
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"
+#include "nurbs/shape.h"
 
 namespace dnurbs {
 
@@ -18,6 +19,9 @@ NurbsCurve open_form(const NurbsCurve& curve);
 /// The open form of a surface, direction by direction as for curves: control points
 /// (n_u + p_u * periodic_u) by (n_v + p_v * periodic_v), u index outer.
 NurbsSurface open_form(const NurbsSurface& surface);
+
+/// The open form of a curve or surface (the overloads above), as exchange formats write them.
+Shape open_form(const Shape& shape);
 
 /// The periodic form of an open curve that is the open form of a periodic one: its knots are a
 /// periodic extension (t_{i+n} - t_i the same period T for every i, to kPeriodicSeamTolerance
