@@ -10,6 +10,8 @@
 // energies (Qin & Terzopoulos 1996; Terzopoulos 2003, eq. 1.20) pull on no control point away
 // from the border: with the border clamped the shape is at rest. Evenly spaced control points
 // over knots with interior values are not linear in u, and such a sheet first slides in its plane.
+// Every generated shape, curved ones included, is at rest with itself as the rest shape
+// (DNurbsSettings::initial_shape_at_rest, dynamics/dnurbs/dnurbs_model.h).
 //
 // Shapes with interior knots have them uniformly spaced; the parameter of a rod or sheet is the
 // distance along it. The revolved shapes follow the orientation of surface_of_revolution

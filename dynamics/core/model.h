@@ -139,6 +139,11 @@ class Model {
   /// integrators then factor one scalar matrix and solve b right-hand sides.
   virtual int kronecker_block_size() const { return 0; }
   virtual const ModelMatrices* scalar_matrices() const { return nullptr; }
+  /// Constant-matrix models: the constant part b of an affine internal force f_int(q) = b - K q
+  /// (velocity_count() entries; K q_r of a D-NURBS rest shape q_r), which the integrators add
+  /// where they form K q from the scalar matrices instead of calling add_internal_force; null
+  /// when b = 0 (the default).
+  virtual const Eigen::VectorXd* internal_force_offset() const { return nullptr; }
 
   /// Adds the internal (elastic) force f_int(q) = -dE/dq to `force` (size velocity_count()).
   /// Default: -K(q) q, right for every model whose energy is (1/2) q^T K(q) q.

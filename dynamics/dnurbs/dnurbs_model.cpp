@@ -41,6 +41,9 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
   build_pattern();
   build_coordinates(control_points, weights, pattern_.scalar, settings.weight_inertia,
                     settings.weight_stiffness, settings.fix_weight_gauge);
+  if (settings.initial_shape_at_rest) {
+    set_rest_shape(initial_coordinates_);
+  }
 }
 
 void DNurbsModel::validate(const Eigen::VectorXd& weights, const DNurbsSettings& settings) const {

@@ -53,6 +53,11 @@ struct DNurbsSettings {
   std::optional<double> weight_inertia;
   /// Free weights only: an explicit weight stiffness k_w (>= 0); unset: as above.
   std::optional<double> weight_stiffness;
+  /// Measure the stretching and bending energy from the initial shape (DNurbsModel::
+  /// set_rest_shape with the initial coordinates), so that the shape as built is at rest; false
+  /// (the default): from zero, the energy of Terzopoulos 2003, eq. 1.20, under which tension
+  /// shrinks every curved shape.
+  bool initial_shape_at_rest = false;
 };
 
 /// A D-NURBS curve or surface as a Model. Use DNurbsCurve or DNurbsSurface to build one.
@@ -60,6 +65,15 @@ struct DNurbsSettings {
 /// Material: `mass_density` mu and `damping_density` gamma per unit parametric measure, and the
 /// stiffness coefficients k_alpha of the quantities alpha = 1..5 (x_u, x_v, x_uu, x_uv, x_vv):
 ///   K = integral sum_alpha k_alpha J_alpha^T J_alpha     (Terzopoulos 2003, eqs. 1.26 and 1.20).
+///
+/// Rest shape: by default the energy is E(q) = (1/2) integral sum_alpha k_alpha |x^alpha(q)|^2
+/// (eq. 1.20), which is zero only for a shape shrunk to a point (tension) or a straight line /
+/// flat plane (rigidity). With a rest shape q_r (set_rest_shape) it is the energy of the change
+/// from that shape,
+///   E(q) = (1/2) integral sum_alpha k_alpha |x^alpha(q) - x^alpha(q_r)|^2,
+///   f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T (x^alpha(q) - x^alpha(q_r)),
+/// so q_r is at rest (f_int(q_r) = 0). The rest derivatives x^alpha(q_r) are stored at the Gauss
+/// points; with fixed weights f_int = -K (q - q_r) exactly, K unchanged.
 class DNurbsModel : public RationalControlNetModel {
  public:
   int parametric_dimension() const override { return surface_ ? 2 : 1; }
@@ -82,6 +96,17 @@ class DNurbsModel : public RationalControlNetModel {
 
   /// The parametric measure of the domain (length of a curve's, area of a surface's).
   double parametric_measure() const;
+
+  /// Makes the shape at coordinates `q_rest` (coordinate_count() entries, finite; free weights
+  /// >= the minimum weight) the rest shape (class comment); with free weights the weight anchor
+  /// k_w then pulls towards its weights. Throws Error naming the entry otherwise.
+  void set_rest_shape(ConstVectorRef q_rest);
+  /// True once a rest shape is set (by set_rest_shape or DNurbsSettings::initial_shape_at_rest).
+  bool has_rest_shape() const { return !rest_derivatives_.empty(); }
+  /// Fixed weights with a rest shape: K q_r; null otherwise.
+  const Eigen::VectorXd* internal_force_offset() const override {
+    return has_rest_shape() && mode_ == WeightMode::kFixed ? &rest_force_ : nullptr;
+  }
 
  protected:
   /// `knots_v` is null for curves. `stiffness` holds k_alpha for alpha = 0..5 (k_0 unused).
@@ -144,16 +169,24 @@ class DNurbsModel : public RationalControlNetModel {
   // Adds element `element`'s matrices (and their mirrored lower pairs) into the block pattern.
   void scatter_free_element(int element, const FreeElementMatrices& local,
                             ModelMatrices& matrices) const;
-  // Per Gauss point (quadrature weight `weight`, material values m): force -= J_alpha^T (w k_alpha
-  // x^alpha) for the quantities with stiffness, and force -= w mu J_0^T (Jdot qd) (free weights,
-  // force and qd of coordinate_count()).
-  void subtract_elastic_force(double weight, const double* m, const PointBasis& basis,
-                              const RationalJacobian& jacobian, double* force) const;
+  // Per Gauss point (quadrature weight `weight`, material values m, rest derivatives `rest` of
+  // rest_at): force -= J_alpha^T (w k_alpha (x^alpha - x^alpha_rest)) for the quantities with
+  // stiffness, and force -= w mu J_0^T (Jdot qd) (free weights, force and qd of
+  // coordinate_count()).
+  void subtract_elastic_force(double weight, const double* m, const double* rest,
+                              const PointBasis& basis, const RationalJacobian& jacobian,
+                              double* force) const;
   static void subtract_inertial_force(double weight, const double* m, const PointBasis& basis,
                                       const RationalJacobian& jacobian, const double* qd,
                                       double* force);
   // Highest derivative order the stiffness needs (1 or 2; 0 without stiffness).
   int stiffness_order() const;
+  // The rest derivatives x^alpha(q_r), alpha = 1..5, at quadrature point `point` of element
+  // `element` (3 doubles each, alpha 1 first), or null without a rest shape.
+  const double* rest_at(int element, int point) const;
+  // x^alpha - x^alpha_rest at one point (x^alpha without a rest shape).
+  static Eigen::Vector3d rest_difference(const RationalJacobian& jacobian, int alpha,
+                                         const double* rest);
 
   // Material values at quadrature point i (element * points_per_element + point):
   // material_[i * 8 + 0] = mu, [+1] = gamma, [+2 + alpha] = k_alpha.
@@ -169,6 +202,11 @@ class DNurbsModel : public RationalControlNetModel {
   DirectionQuadrature table_v_;
   std::vector<double> material_;
   AssemblyPattern pattern_;
+  // The rest shape (class comment): x^alpha(q_r) at every quadrature point (kRestStride doubles
+  // per point), empty without one; fixed weights: K q_r, added to f_int = -K q.
+  static constexpr int kRestStride = 3 * (kQuantityCount - 1);
+  std::vector<double> rest_derivatives_;
+  Eigen::VectorXd rest_force_;
 };
 
 template <typename PointVisitor, typename ElementVisitor>

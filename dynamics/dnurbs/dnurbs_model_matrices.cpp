@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -255,7 +256,7 @@ void DNurbsModel::free_pass(ConstVectorRef q, const double* qd, ModelMatrices& m
   }
   for_each_quadrature_point(
       control_net(q), stiffness_order(), true,
-      [&](int /*element*/, int /*point*/, double weight, const double* m, const PointBasis& basis,
+      [&](int element, int point, double weight, const double* m, const PointBasis& basis,
           const RationalJacobian& jacobian) {
         coefficients.mass = weight * m[0];
         coefficients.damping = has_damping_ ? weight * m[1] : 0.0;
@@ -269,7 +270,7 @@ void DNurbsModel::free_pass(ConstVectorRef q, const double* qd, ModelMatrices& m
           subtract_inertial_force(weight, m, basis, jacobian, qd, force);
         }
         if (force != nullptr) {
-          subtract_elastic_force(weight, m, basis, jacobian, force);
+          subtract_elastic_force(weight, m, rest_at(element, point), basis, jacobian, force);
         }
       },
       [&](int element) {
@@ -319,7 +320,7 @@ void DNurbsModel::add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVe
   }
   for_each_quadrature_point(
       control_net(q), stiffness_order(), true,
-      [&](int /*element*/, int /*point*/, double weight, const double* m, const PointBasis& basis,
+      [&](int element, int point, double weight, const double* m, const PointBasis& basis,
           const RationalJacobian& jacobian) {
         Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
         Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
@@ -339,19 +340,38 @@ void DNurbsModel::add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVe
         if (inertial) {
           subtract_inertial_force(weight, m, basis, jacobian, qd.data(), force.data());
         }
-        subtract_elastic_force(weight, m, basis, jacobian, force.data());
+        subtract_elastic_force(weight, m, rest_at(element, point), basis, jacobian, force.data());
       },
       [](int /*element*/) {});
 }
 
-void DNurbsModel::subtract_elastic_force(double weight, const double* m, const PointBasis& basis,
-                                         const RationalJacobian& jacobian, double* force) const {
-  // -J_alpha^T (w k_alpha x^alpha) at one point, for each quantity with stiffness
+const double* DNurbsModel::rest_at(int element, int point) const {
+  if (rest_derivatives_.empty()) {
+    return nullptr;
+  }
+  return &rest_derivatives_[static_cast<size_t>((element * points_per_element() + point) *
+                                                kRestStride)];
+}
+
+Eigen::Vector3d DNurbsModel::rest_difference(const RationalJacobian& jacobian, int alpha,
+                                             const double* rest) {
+  const Eigen::Vector3d& x = jacobian.point[static_cast<size_t>(alpha)];
+  if (rest == nullptr) {
+    return x;
+  }
+  return x - Eigen::Map<const Eigen::Vector3d>(rest + 3 * (alpha - 1));
+}
+
+void DNurbsModel::subtract_elastic_force(double weight, const double* m, const double* rest,
+                                         const PointBasis& basis, const RationalJacobian& jacobian,
+                                         double* force) const {
+  // -J_alpha^T (w k_alpha (x^alpha - x^alpha_rest)) at one point, for each quantity with
+  // stiffness (class comment of dnurbs_model.h)
   for (int alpha = 1; alpha < kQuantityCount; ++alpha) {
     if (!has_stiffness_[static_cast<size_t>(alpha)]) {
       continue;
     }
-    const Eigen::Vector3d x = weight * m[2 + alpha] * jacobian.point[static_cast<size_t>(alpha)];
+    const Eigen::Vector3d x = weight * m[2 + alpha] * rest_difference(jacobian, alpha, rest);
     for (int a = 0; a < basis.active_count; ++a) {
       double* f = force + basis.node[static_cast<size_t>(a)] * 4;
       Eigen::Map<Eigen::Vector3d>(f) -= jacobian.rational(alpha, a) * x;
@@ -386,11 +406,15 @@ void DNurbsModel::subtract_inertial_force(double weight, const double* m, const 
 
 void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
   if (mode_ == WeightMode::kFixed) {
+    // f_int = -K (q - q_r) = -K q + K q_r
     force.noalias() -= expanded_.stiffness * q;
+    if (has_rest_shape()) {
+      force += rest_force_;
+    }
     return;
   }
-  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T x^alpha (x^alpha = J_alpha q), and the
-  // weight anchor -k_w (w - w_0) (rational_control_net_model.h).
+  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T (x^alpha - x^alpha_rest) (x^alpha =
+  // J_alpha q), and the weight anchor -k_w (w - w_0) (rational_control_net_model.h).
   add_weight_anchor_force(q, force);
   const int order = stiffness_order();
   if (order == 0) {
@@ -398,9 +422,9 @@ void DNurbsModel::add_internal_force(ConstVectorRef q, VectorRef force) const {
   }
   for_each_quadrature_point(
       control_net(q), order, true,
-      [&](int /*element*/, int /*point*/, double weight, const double* m, const PointBasis& basis,
+      [&](int element, int point, double weight, const double* m, const PointBasis& basis,
           const RationalJacobian& jacobian) {
-        subtract_elastic_force(weight, m, basis, jacobian, force.data());
+        subtract_elastic_force(weight, m, rest_at(element, point), basis, jacobian, force.data());
       },
       [](int /*element*/) {});
 }
@@ -413,18 +437,64 @@ double DNurbsModel::quadrature_potential_energy(ConstVectorRef q) const {
   }
   for_each_quadrature_point(
       control_net(q), order, false,
-      [&](int /*element*/, int /*point*/, double weight, const double* m,
-          const PointBasis& /*basis*/, const RationalJacobian& jacobian) {
+      [&](int element, int point, double weight, const double* m, const PointBasis& /*basis*/,
+          const RationalJacobian& jacobian) {
+        const double* rest = rest_at(element, point);
         double density = 0.0;
         for (int alpha = 1; alpha < kQuantityCount; ++alpha) {
           if (has_stiffness_[static_cast<size_t>(alpha)]) {
-            density += m[2 + alpha] * jacobian.point[static_cast<size_t>(alpha)].squaredNorm();
+            density += m[2 + alpha] * rest_difference(jacobian, alpha, rest).squaredNorm();
           }
         }
         energy += 0.5 * weight * density;
       },
       [](int /*element*/) {});
   return energy;
+}
+
+void DNurbsModel::set_rest_shape(ConstVectorRef q_rest) {
+  check_coordinates(q_rest);
+  for (Eigen::Index i = 0; i < q_rest.size(); ++i) {
+    if (!std::isfinite(q_rest[i])) {
+      throw make_error("rest shape: coordinate ", i, " is ", q_rest[i], " (not finite)");
+    }
+  }
+  if (mode_ == WeightMode::kFree) {
+    for (int i = 0; i < control_point_count_; ++i) {
+      if (q_rest[4 * i + 3] < minimum_weight_) {
+        throw make_error("rest shape: weight ", i, " is ", q_rest[4 * i + 3],
+                         ", below the minimum weight ", minimum_weight_);
+      }
+    }
+  }
+  // x^alpha(q_r) at every Gauss point of the energy (rest_at)
+  std::vector<double> rest(
+      static_cast<size_t>(element_count() * points_per_element() * kRestStride), 0.0);
+  for_each_quadrature_point(
+      control_net(q_rest), stiffness_order(), false,
+      [&](int element, int point, double /*weight*/, const double* /*m*/,
+          const PointBasis& /*basis*/, const RationalJacobian& jacobian) {
+        double* slot =
+            &rest[static_cast<size_t>((element * points_per_element() + point) * kRestStride)];
+        for (int alpha = 1; alpha < kQuantityCount; ++alpha) {
+          if (has_stiffness_[static_cast<size_t>(alpha)]) {
+            Eigen::Map<Eigen::Vector3d>(slot + 3 * (alpha - 1)) =
+                jacobian.point[static_cast<size_t>(alpha)];
+          }
+        }
+      },
+      [](int /*element*/) {});
+  rest_derivatives_ = std::move(rest);
+  if (mode_ == WeightMode::kFixed) {
+    // f_int = -K (q - q_r) and E(q) expanded about q0 with gradient K (q0 - q_r)
+    rest_force_ = expanded_.stiffness * q_rest;
+    reference_gradient_ = expanded_.stiffness * initial_coordinates_ - rest_force_;
+    reference_energy_ = quadrature_potential_energy(initial_coordinates_);
+  } else {
+    for (int i = 0; i < control_point_count_; ++i) {
+      anchor_weights_[i] = q_rest[4 * i + 3];
+    }
+  }
 }
 
 void DNurbsModel::add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const {

@@ -65,7 +65,9 @@ void RationalControlNetModel::build_coordinates(const Eigen::MatrixX3d& control_
     reference_energy_ = quadrature_potential_energy(initial_coordinates_);
     return;
   }
-  // Free weights: the 4 x 4 block pattern and the value index of each weight's diagonal entry
+  // Free weights: the anchor of the weights, the 4 x 4 block pattern and the value index of each
+  // weight's diagonal entry
+  anchor_weights_ = weights;
   block_pattern_ = dense_block_pattern(scalar_pattern, 4);
   const auto* outer = scalar_pattern.outerIndexPtr();
   const auto* inner = scalar_pattern.innerIndexPtr();
@@ -105,7 +107,7 @@ void RationalControlNetModel::add_weight_anchor_force(ConstVectorRef q, VectorRe
     return;
   }
   for (int i = 0; i < control_point_count_; ++i) {
-    force[4 * i + 3] -= weight_stiffness_ * (q[4 * i + 3] - initial_coordinates_[4 * i + 3]);
+    force[4 * i + 3] -= weight_stiffness_ * (q[4 * i + 3] - anchor_weights_[i]);
   }
 }
 
@@ -115,7 +117,7 @@ double RationalControlNetModel::weight_anchor_energy(ConstVectorRef q) const {
     return energy;
   }
   for (int i = 0; i < control_point_count_; ++i) {
-    const double stretch = q[4 * i + 3] - initial_coordinates_[4 * i + 3];
+    const double stretch = q[4 * i + 3] - anchor_weights_[i];
     energy += 0.5 * weight_stiffness_ * stretch * stretch;
   }
   return energy;

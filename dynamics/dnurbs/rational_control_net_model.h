@@ -165,6 +165,7 @@ class RationalControlNetModel : public Model {
   void add_weight_regularization(ModelMatrices& matrices) const;
   /// Free weights: subtracts k_w (w - w_0) from the weight entries of `force` (q and force of
   /// coordinate_count()); weight_anchor_energy: (1/2) k_w |w - w_0|^2 at q (0 for fixed weights).
+  /// w_0 is anchor_weights_: the initial weights unless a derived model moves it.
   void add_weight_anchor_force(ConstVectorRef q, VectorRef force) const;
   double weight_anchor_energy(ConstVectorRef q) const;
   /// tangent_kinematics of the derived surfaces, in two steps: start_tangent_columns sizes
@@ -190,6 +191,7 @@ class RationalControlNetModel : public Model {
   double weight_stiffness_ = 0.0;  // free weights: k_w of the anchor to the initial weights
   Eigen::VectorXd fixed_weights_;  // the weights when they are not coordinates
   Eigen::VectorXd initial_coordinates_;
+  Eigen::VectorXd anchor_weights_;  // free weights: w_0 of the weight anchor (initial or rest)
   // Fixed weights: scalar matrices and their S (x) I_3 expansion, built once by
   // build_coordinates (they depend on the knots, the fixed weights and the material only).
   ModelMatrices scalar_;

@@ -146,6 +146,9 @@ void subtract_block_terms(const System& system, bool with_acceleration, Integrat
       block->residual.subtract({w.q_iter.data() + block->coordinate_offset, w.v_iter.data() + vo,
                                 with_acceleration ? w.a.data() + vo : nullptr},
                                w.rhs.data() + vo);
+      if (const Eigen::VectorXd* offset = system.model(block->model).internal_force_offset()) {
+        w.rhs.segment(vo, vc) += *offset;  // f_int = b - K q (Model::internal_force_offset)
+      }
     } else {
       if (!block->fused) {
         system.model(block->model)

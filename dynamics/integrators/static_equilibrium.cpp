@@ -54,8 +54,11 @@ void solve_static_equilibrium(System& system) {
   const Eigen::VectorXd& q = system.coordinates();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   // K plus the springs' k L^T L, f plus their k L^T target: a spring's force k L^T (target - L q)
-  // is linear in q (L constant for constant-matrix models).
+  // is linear in q (L constant for constant-matrix models). The internal force of a
+  // constant-matrix model is affine, f_int(q) = f_int(0) - K q (f_int(0) = K q_r with a rest
+  // shape q_r, dnurbs_model.h), so f_int(0) joins the right-hand side.
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  system.add_internal_forces(zero, rhs);
   system.add_applied_forces(system.time(), q, zero, rhs, /*include_springs=*/false);
   const SparseMatrix K = spring_stiffness(system, rhs) + system.constant_matrices()->stiffness;
 

@@ -91,7 +91,7 @@ struct SceneDNurbsModel : SceneModelSpec {
                                               const std::string& path) {
     check_model_keys(reader, model, path, Spec::kType,
                      {"shape", "shape_file", "make", "fit", "weights", "quadrature_points",
-                      "minimum_weight", "weight_inertia", "weight_stiffness"});
+                      "minimum_weight", "weight_inertia", "weight_stiffness", "rest_shape"});
     auto spec = std::make_unique<Spec>();
     std::vector<const char*> keys = {"mass_density", "damping_density"};
     for (const auto& key : Spec::kStiffnessKeys) {

@@ -122,6 +122,10 @@ void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
       settings.*member = value;
     }
   }
+  if (const JsonValue* rest = reader.find(model, "rest_shape")) {
+    settings.initial_shape_at_rest =
+        reader.choice(*rest, join_json_path(path, "rest_shape"), {"none", "initial"}) == "initial";
+  }
 }
 
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
@@ -133,6 +137,9 @@ void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
   }
   if (settings.weight_stiffness) {
     model["weight_stiffness"] = *settings.weight_stiffness;
+  }
+  if (settings.initial_shape_at_rest) {
+    model["rest_shape"] = "initial";  // only tensor-product D-NURBS models take the key
   }
 }
 

@@ -33,7 +33,8 @@ void write_scene_shape(const std::optional<Shape>& shape, const std::string& sha
                        const std::optional<SceneFit>& fit, JsonOut& model);
 
 /// "weights" (fixed or free), "quadrature_points", "minimum_weight" and the optional
-/// "weight_inertia" and "weight_stiffness" (>= 0; absent: scale-aware) into `settings`.
+/// "weight_inertia" and "weight_stiffness" (>= 0; absent: scale-aware) and "rest_shape"
+/// ("none" or "initial": DNurbsSettings::initial_shape_at_rest; written only when "initial")
 void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
                           const std::string& path, DNurbsSettings& settings);
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model);

@@ -204,6 +204,23 @@ std::unique_ptr<Model> model_from_json(const std::string& text) {
   return simulation.system().model(0).clone();
 }
 
+// set_rest_shape and has_rest_shape of DNurbsModel on a curve or surface class.
+template <typename DNurbsClass>
+void bind_rest_shape(py::class_<DNurbsClass, Model>& model_class) {
+  model_class
+      .def(
+          "set_rest_shape",
+          [](DNurbsClass& self, const py::array_t<double>& q_rest) {
+            self.set_rest_shape(vector_from_array(q_rest, "q_rest", self.coordinate_count()));
+          },
+          py::arg("q_rest"),
+          "Measures the energy from the shape at q_rest (n,): E = 1/2 integral sum_alpha k_alpha "
+          "|x^alpha(q) - x^alpha(q_rest)|^2, so q_rest is at rest. Copies in a System are "
+          "unaffected.")
+      .def_property_readonly("has_rest_shape", &DNurbsClass::has_rest_shape,
+                             "True once a rest shape is set.");
+}
+
 }  // namespace
 
 void bind_model(py::module_& module) {
@@ -214,51 +231,63 @@ void bind_model(py::module_& module) {
       "stiffness matrices, forces, boundary conditions and tessellation. Models are values: "
       "System.add_model copies one.");
   bind_model_contract(model);
-  py::class_<DNurbsCurve, Model>(module, "DNurbsCurve",
-                                 "A D-NURBS curve (Terzopoulos, Deformable Models, eq. 1.21-1.26): "
-                                 "q = [P_0, P_1, ...] (3 n), or [P_0, w_0, ...] (4 n) with free "
-                                 "weights.")
+  py::class_<DNurbsCurve, Model> curve_class(
+      module, "DNurbsCurve",
+      "A D-NURBS curve (Terzopoulos, Deformable Models, eq. 1.21-1.26): "
+      "q = [P_0, P_1, ...] (3 n), or [P_0, w_0, ...] (4 n) with free "
+      "weights.");
+  curve_class
       .def(
           py::init([](const NurbsCurve& curve, double mass_density, double damping_density,
-                      double tension, double rigidity, bool free_weights) {
+                      double tension, double rigidity, bool free_weights,
+                      bool initial_shape_at_rest) {
             DNurbsSettings settings;
             settings.weight_mode = free_weights ? WeightMode::kFree : WeightMode::kFixed;
+            settings.initial_shape_at_rest = initial_shape_at_rest;
             return DNurbsCurve(curve, {mass_density, damping_density, tension, rigidity}, settings);
           }),
           py::arg("curve"), py::arg("mass_density") = 1.0, py::arg("damping_density") = 0.0,
           py::arg("tension") = 0.0, py::arg("rigidity") = 0.0, py::arg("free_weights") = false,
+          py::arg("initial_shape_at_rest") = false,
           "A D-NURBS curve from a NurbsCurve with constant material: mass and damping "
-          "densities mu, gamma and the snake energy's tension w1 and rigidity w2 (all >= 0).")
+          "densities mu, gamma and the snake energy's tension w1 and rigidity w2 (all >= 0); "
+          "with initial_shape_at_rest the energy is measured from the curve as given.")
       .def(
           "curve",
           [](const DNurbsCurve& self, const py::object& q) {
             return self.curve(model_state(self, q));
           },
           py::arg("q") = py::none(), "The NurbsCurve at q.");
-  py::class_<DNurbsSurface, Model>(
+  bind_rest_shape(curve_class);
+  py::class_<DNurbsSurface, Model> surface_class(
       module, "DNurbsSurface",
       "A tensor-product D-NURBS surface (Terzopoulos, Deformable Models, eq. 1.27) with the "
       "thin-plate-under-tension energy (eq. 1.20): q = [P_0, P_1, ...], control point (i, j) "
-      "is node i (n + 1) + j.")
+      "is node i (n + 1) + j.");
+  surface_class
       .def(py::init([](const NurbsSurface& surface, double mass_density, double damping_density,
                        double a10, double a01, double b20, double b11, double b02,
-                       bool free_weights) {
+                       bool free_weights, bool initial_shape_at_rest) {
              DNurbsSettings settings;
              settings.weight_mode = free_weights ? WeightMode::kFree : WeightMode::kFixed;
+             settings.initial_shape_at_rest = initial_shape_at_rest;
              return DNurbsSurface(surface, {mass_density, damping_density, a10, a01, b20, b11, b02},
                                   settings);
            }),
            py::arg("surface"), py::arg("mass_density") = 1.0, py::arg("damping_density") = 0.0,
            py::arg("a10") = 0.0, py::arg("a01") = 0.0, py::arg("b20") = 0.0, py::arg("b11") = 0.0,
            py::arg("b02") = 0.0, py::arg("free_weights") = false,
+           py::arg("initial_shape_at_rest") = false,
            "A D-NURBS surface from a NurbsSurface with constant material: densities mu, gamma, "
-           "tensions a10, a01 and rigidities b20, b11, b02 (all >= 0).")
+           "tensions a10, a01 and rigidities b20, b11, b02 (all >= 0); with "
+           "initial_shape_at_rest the energy is measured from the surface as given.")
       .def(
           "surface",
           [](const DNurbsSurface& self, const py::object& q) {
             return self.surface(model_state(self, q));
           },
           py::arg("q") = py::none(), "The NurbsSurface at q.");
+  bind_rest_shape(surface_class);
   module.def("model_from_json", &model_from_json, py::arg("text"),
              "A model of any type from the JSON text of one entry of a scene's \"models\" "
              "(docs/scene-format.md: dnurbs_curve, dnurbs_surface, superquadric, "

@@ -153,6 +153,38 @@ TEST(ShapeRecipe, ASceneModelMadeByARecipeRunsLikeTheSameShapeTypedOut) {
   EXPECT_EQ(a.system().coordinates(), b.system().coordinates());
 }
 
+// A free sphere under tension and bending, made by a recipe, with or without "rest_shape".
+std::string sphere_scene(const std::string& rest) {
+  return R"({"models": [{"name": "ball", "type": "dnurbs_surface",
+              "make": {"kind": "sphere", "radius": 0.8}, )" +
+         rest + R"("material": {"damping_density": 2, "a10": 1, "a01": 1, "b20": 0.1,
+              "b11": 0.1, "b02": 0.1}}],
+  "run": {"steps": 30}})";
+}
+
+TEST(ShapeRecipe, AMadeShapeWithItsInitialShapeAsRestStaysPut) {
+  for (const bool at_rest : {true, false}) {
+    const Scene scene =
+        parse_scene_json(sphere_scene(at_rest ? R"("rest_shape": "initial", )" : ""));
+    // The key survives the scene writer
+    EXPECT_EQ(scene_to_json(scene).find(R"("rest_shape": "initial")") != std::string::npos,
+              at_rest);
+    SceneSimulation simulation(scene);
+    const Eigen::VectorXd start = simulation.system().coordinates();
+    for (int step = 0; step < 30; ++step) {
+      simulation.step();
+    }
+    const double moved = (simulation.system().coordinates() - start).lpNorm<Eigen::Infinity>();
+    if (at_rest) {
+      EXPECT_EQ(moved, 0.0);  // the step solves for the increment, which is exactly zero
+    } else {
+      EXPECT_GT(moved, 0.01);  // measured from zero, tension shrinks the sphere
+    }
+  }
+  EXPECT_THAT(error_message([] { parse_scene_json(sphere_scene(R"("rest_shape": "flat", )")); }),
+              HasSubstr("models[0].rest_shape"));
+}
+
 TEST(ShapeRecipe, SceneKeysAreCheckedWithTheModelsPath) {
   const auto message = [](const std::string& shape) {
     return error_message([&] { parse_scene_json(sheet_scene(shape), "scene.json"); });

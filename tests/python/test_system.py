@@ -233,3 +233,33 @@ def test_errors_in_python_force_functions_propagate():
     system.add_spring(0, [0.5, 0.5], lambda t: [np.nan, 0.0, 0.0], 1.0)
     with pytest.raises(dnurbs.Error, match="spring 0 at t = 0: target \\(nan, 0, 0\\) is not finite"):
         dnurbs.Integrator().step(system, 0.01)
+
+
+def test_a_sphere_with_its_initial_shape_as_rest_feels_no_force():
+    surface = dnurbs.sphere(1.0)
+    at_rest = dnurbs.DNurbsSurface(surface, a10=1.0, a01=1.0, b20=0.1, b11=0.1, b02=0.1,
+                                   initial_shape_at_rest=True)
+    from_zero = dnurbs.DNurbsSurface(surface, a10=1.0, a01=1.0, b20=0.1, b11=0.1, b02=0.1)
+    q = at_rest.initial_coordinates()
+    assert at_rest.has_rest_shape and not from_zero.has_rest_shape
+    assert np.abs(at_rest.internal_force(q)).max() < 1e-13
+    assert np.abs(from_zero.internal_force(q)).max() > 0.1
+    # Any state can be the rest shape; the energy is that of the change from it
+    moved = q + 0.01 * np.sin(np.arange(q.size))
+    from_zero.set_rest_shape(moved)
+    # Fixed weights: E is expanded about the initial state, E(q0) + d.K(q0 - q_r) + d.K d / 2,
+    # which cancels to round-off of E(q0) at the rest shape.
+    assert abs(from_zero.potential_energy(moved)) < 1e-12 * from_zero.potential_energy(q)
+    change = q - moved
+    stiffness = from_zero.matrices(q)["stiffness"]
+    np.testing.assert_allclose(from_zero.potential_energy(q), 0.5 * change @ (stiffness @ change),
+                               rtol=1e-12)
+    with pytest.raises(dnurbs.Error, match="rest shape: coordinate 2 is nan"):
+        bad = moved.copy()
+        bad[2] = np.nan
+        from_zero.set_rest_shape(bad)
+    curve = dnurbs.DNurbsCurve(dnurbs.full_circle(1.0), tension=1.0, initial_shape_at_rest=True)
+    assert curve.has_rest_shape
+    assert np.abs(curve.internal_force(curve.initial_coordinates())).max() < 1e-13
+    curve.set_rest_shape(curve.initial_coordinates() + 0.1)  # a translated circle: no force
+    assert np.abs(curve.internal_force(curve.initial_coordinates())).max() < 1e-13
