@@ -1,4 +1,4 @@
-#include "cad/brep_shapes.h"
+#include "dnurbs/cad/brep_shapes.h"
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "cad/occt_nurbs.h"
-#include "core/error.h"
+#include "dnurbs/cad/occt_nurbs.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

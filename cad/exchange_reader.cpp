@@ -1,4 +1,4 @@
-#include "cad/exchange_reader.h"
+#include "dnurbs/cad/exchange_reader.h"
 
 #include <Interface_InterfaceModel.hxx>
 #include <Message.hxx>
@@ -10,8 +10,8 @@
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
-#include "cad/brep_shapes.h"
-#include "core/error.h"
+#include "dnurbs/cad/brep_shapes.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

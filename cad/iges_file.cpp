@@ -1,4 +1,4 @@
-#include "cad/iges_file.h"
+#include "dnurbs/cad/iges_file.h"
 
 #include <IGESControl_Reader.hxx>
 #include <IGESControl_Writer.hxx>
@@ -14,10 +14,10 @@
 #include <optional>
 #include <sstream>
 
-#include "cad/exchange_reader.h"
-#include "cad/occt_nurbs.h"
-#include "core/error.h"
-#include "nurbs/periodic_form.h"
+#include "dnurbs/cad/exchange_reader.h"
+#include "dnurbs/cad/occt_nurbs.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "cad/occt_nurbs.h"
+#include "dnurbs/cad/occt_nurbs.h"
 
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/periodic_form.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 namespace dnurbs {
 namespace {

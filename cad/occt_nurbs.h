@@ -13,8 +13,8 @@
 #include <Geom_BSplineSurface.hxx>
 #include <Standard_Handle.hxx>
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "cad/step_file.h"
+#include "dnurbs/cad/step_file.h"
 
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
@@ -10,11 +10,11 @@
 
 #include <sstream>
 
-#include "cad/brep_shapes.h"
-#include "cad/exchange_reader.h"
-#include "cad/step_geometry.h"
-#include "core/error.h"
-#include "nurbs/periodic_form.h"
+#include "dnurbs/cad/brep_shapes.h"
+#include "dnurbs/cad/exchange_reader.h"
+#include "dnurbs/cad/step_geometry.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "cad/step_geometry.h"
+#include "dnurbs/cad/step_geometry.h"
 
 #include <StepGeom_BSplineCurveWithKnots.hxx>
 #include <StepGeom_BSplineCurveWithKnotsAndRationalBSplineCurve.hxx>
@@ -19,8 +19,8 @@
 
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/periodic_form.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 namespace dnurbs {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <optional>
 
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

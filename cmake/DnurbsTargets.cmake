@@ -1,7 +1,9 @@
 # dnurbs_add_library(<folder> DEPENDS <targets...>)
 # Builds the library dnurbs_<folder> (alias dnurbs::<folder>) from <folder>/**/*.cpp (sub-folders
 # included); a folder with
-# no sources yet becomes an interface library. Headers install under include/dnurbs/<folder>.
+# no sources yet becomes an interface library. Headers are included as "dnurbs/<folder>/x.h":
+# in the build tree through DNURBS_INCLUDE_ROOT (CMakeLists.txt), installed under
+# include/dnurbs/<folder>.
 function(dnurbs_add_library folder)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
   file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.cpp")
@@ -10,15 +12,15 @@ function(dnurbs_add_library folder)
     add_library(${target} ${sources})
     target_link_libraries(${target} PUBLIC ${ARG_DEPENDS} PRIVATE dnurbs_warnings)
     target_compile_features(${target} PUBLIC cxx_std_20)
-    target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
-                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/dnurbs>)
+    target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${DNURBS_INCLUDE_ROOT}>
+                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder} POSITION_INDEPENDENT_CODE ON)
   else()
     add_library(${target} INTERFACE)
     target_link_libraries(${target} INTERFACE ${ARG_DEPENDS})
     target_compile_features(${target} INTERFACE cxx_std_20)
-    target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
-                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/dnurbs>)
+    target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${DNURBS_INCLUDE_ROOT}>
+                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder})
   endif()
   add_library(dnurbs::${folder} ALIAS ${target})

@@ -1,8 +1,8 @@
-#include "constraints/constraint.h"
+#include "dnurbs/constraints/constraint.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

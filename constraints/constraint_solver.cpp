@@ -1,4 +1,4 @@
-#include "constraints/constraint_solver.h"
+#include "dnurbs/constraints/constraint_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

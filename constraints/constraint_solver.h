@@ -39,8 +39,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "constraints/constraint.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/constraints/constraint.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 

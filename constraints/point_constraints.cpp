@@ -1,8 +1,8 @@
-#include "constraints/point_constraints.h"
+#include "dnurbs/constraints/point_constraints.h"
 
 #include <sstream>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

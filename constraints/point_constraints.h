@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "constraints/constraint.h"
-#include "constraints/target_trajectory.h"
+#include "dnurbs/constraints/constraint.h"
+#include "dnurbs/constraints/target_trajectory.h"
 
 namespace dnurbs {
 

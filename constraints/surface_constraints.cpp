@@ -1,4 +1,4 @@
-#include "constraints/surface_constraints.h"
+#include "dnurbs/constraints/surface_constraints.h"
 
 #include <cmath>
 #include <sstream>
@@ -6,9 +6,9 @@
 
 #include <Eigen/Geometry>
 
-#include "constraints/point_constraints.h"
-#include "core/error.h"
-#include "nurbs/closest_point.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/closest_point.h"
 
 namespace dnurbs {
 namespace {

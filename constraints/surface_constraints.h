@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "constraints/constraint.h"
+#include "dnurbs/constraints/constraint.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "constraints/target_trajectory.h"
+#include "dnurbs/constraints/target_trajectory.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "core/child_process_call.h"
+#include "dnurbs/core/child_process_call.h"
 
 #include <fcntl.h>
 #include <sys/resource.h>
@@ -12,7 +12,7 @@
 #include <exception>
 #include <new>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

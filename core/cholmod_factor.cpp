@@ -1,4 +1,4 @@
-#include "core/cholmod_factor.h"
+#include "dnurbs/core/cholmod_factor.h"
 
 #include <cholmod.h>
 #include <dlfcn.h>
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,6 +1,6 @@
-#include "core/fixed_coordinates.h"
+#include "dnurbs/core/fixed_coordinates.h"
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/sparse_matrix.h"
+#include "dnurbs/core/sparse_matrix.h"
 
 namespace dnurbs {
 

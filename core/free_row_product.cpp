@@ -1,9 +1,9 @@
-#include "core/free_row_product.h"
+#include "dnurbs/core/free_row_product.h"
 
 #include <algorithm>
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "core/sparse_matrix.h"
+#include "dnurbs/core/sparse_matrix.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "core/input_file.h"
+#include "dnurbs/core/input_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,6 +1,6 @@
-#include "core/kronecker.h"
+#include "dnurbs/core/kronecker.h"
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "core/sparse_matrix.h"
+#include "dnurbs/core/sparse_matrix.h"
 
 namespace dnurbs {
 

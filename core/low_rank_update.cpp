@@ -1,9 +1,9 @@
-#include "core/low_rank_update.h"
+#include "dnurbs/core/low_rank_update.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "core/sparse_cholesky.h"
+#include "dnurbs/core/sparse_cholesky.h"
 
 namespace dnurbs {
 

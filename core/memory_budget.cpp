@@ -1,4 +1,4 @@
-#include "core/memory_budget.h"
+#include "dnurbs/core/memory_budget.h"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

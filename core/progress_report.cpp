@@ -1,4 +1,4 @@
-#include "core/progress_report.h"
+#include "dnurbs/core/progress_report.h"
 
 #include <cmath>
 #include <cstdio>

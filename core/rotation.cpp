@@ -1,8 +1,8 @@
-#include "core/rotation.h"
+#include "dnurbs/core/rotation.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "core/sparse_cholesky.h"
+#include "dnurbs/core/sparse_cholesky.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/cholmod_factor.h"
-#include "core/error.h"
+#include "dnurbs/core/cholmod_factor.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "design/dnurbs_fitting.h"
+#include "dnurbs/design/dnurbs_fitting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <Eigen/SparseCholesky>
 #include <nlopt.hpp>
 
-#include "core/error.h"
-#include "design/point_set.h"
-#include "nurbs/closest_point.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/design/point_set.h"
+#include "dnurbs/nurbs/closest_point.h"
 
 namespace dnurbs {
 namespace {

@@ -16,8 +16,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "design/energy_minimization.h"
+#include "dnurbs/design/energy_minimization.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <nlopt.hpp>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

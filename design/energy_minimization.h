@@ -19,8 +19,8 @@
 
 #include <Eigen/Core>
 
-#include "constraints/constraint_solver.h"
-#include "dynamics/core/system.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "design/point_set.h"
+#include "dnurbs/design/point_set.h"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-#include "core/error.h"
-#include "core/input_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
 
 namespace dnurbs {
 

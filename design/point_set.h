@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "design/superquadric_fitting.h"
+#include "dnurbs/design/superquadric_fitting.h"
 
 #include <algorithm>
 #include <array>
@@ -10,8 +10,8 @@
 #include <Eigen/Eigenvalues>
 #include <nlopt.hpp>
 
-#include "core/error.h"
-#include "design/point_set.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/design/point_set.h"
 
 namespace dnurbs {
 namespace {

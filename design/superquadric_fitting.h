@@ -23,7 +23,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "surface/deformable_superquadric_shape.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
 
 namespace dnurbs {
 

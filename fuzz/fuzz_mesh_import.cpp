@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/mesh_import.h"
 #include "fuzz/fuzz_support.h"
-#include "io/mesh_import.h"
 
 namespace {
 

@@ -3,9 +3,9 @@
 
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/scene.h"
 #include "fuzz/fuzz_support.h"
-#include "io/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text = dnurbs::fuzz::input_text(data, size);

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/obj_freeform.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/io/triangular_shape_file.h"
 #include "fuzz/fuzz_support.h"
-#include "io/obj_freeform.h"
-#include "io/shape_file.h"
-#include "io/triangular_shape_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text = dnurbs::fuzz::input_text(data, size);

@@ -1,4 +1,4 @@
-#include "io/animated_gltf.h"
+#include "dnurbs/io/animated_gltf.h"
 
 #include <cmath>
 #include <cstdint>
@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/atomic_write.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/atomic_write.h"
 
 namespace dnurbs {
 namespace {

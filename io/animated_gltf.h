@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

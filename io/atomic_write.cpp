@@ -1,4 +1,4 @@
-#include "io/atomic_write.h"
+#include "dnurbs/io/atomic_write.h"
 
 #include <signal.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

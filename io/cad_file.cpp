@@ -1,13 +1,13 @@
-#include "io/cad_file.h"
+#include "dnurbs/io/cad_file.h"
 
 #include <string>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/atomic_write.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/atomic_write.h"
 #if DNURBS_WITH_CAD
-#include "cad/iges_file.h"
-#include "cad/step_file.h"
+#include "dnurbs/cad/iges_file.h"
+#include "dnurbs/cad/step_file.h"
 #endif
 
 namespace dnurbs {

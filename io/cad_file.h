@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "io/checkpoint.h"
+#include "dnurbs/io/checkpoint.h"
 
 #include <cmath>
 #include <fstream>
@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/atomic_write.h"
-#include "io/json_messages.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/io/json_messages.h"
 
 namespace dnurbs {
 namespace {

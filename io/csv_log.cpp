@@ -1,11 +1,11 @@
-#include "io/csv_log.h"
+#include "dnurbs/io/csv_log.h"
 
 #include <cstdio>
 #include <sstream>
 #include <utility>
 
-#include "core/error.h"
-#include "io/atomic_write.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/atomic_write.h"
 
 namespace dnurbs {
 

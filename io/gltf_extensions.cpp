@@ -1,4 +1,4 @@
-#include "io/gltf_extensions.h"
+#include "dnurbs/io/gltf_extensions.h"
 
 #include <cstdint>
 #include <cstring>
@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,11 +1,11 @@
-#include "io/grid_from_mesh.h"
+#include "dnurbs/io/grid_from_mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
-#include "io/mesh_import.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/mesh_import.h"
 
 namespace dnurbs {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "surface/grid.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/grid.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

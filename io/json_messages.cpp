@@ -1,12 +1,12 @@
-#include "io/json_messages.h"
+#include "dnurbs/io/json_messages.h"
 
 #include <cmath>
 #include <cstdio>
 #include <set>
 #include <vector>
 
-#include "core/error.h"
-#include "core/input_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "io/mesh_export.h"
+#include "dnurbs/io/mesh_export.h"
 
 #include <array>
 #include <cerrno>
@@ -18,12 +18,12 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/IOStream.hpp>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/atomic_write.h"
-#include "io/gltf_extensions.h"
-#include "io/mesh_up_axis.h"
-#include "io/output_path.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/io/gltf_extensions.h"
+#include "dnurbs/io/mesh_up_axis.h"
+#include "dnurbs/io/output_path.h"
 
 namespace dnurbs {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "io/mesh_up_axis.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/io/mesh_up_axis.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "io/mesh_import.h"
+#include "dnurbs/io/mesh_import.h"
 
 #include <algorithm>
 #include <array>
@@ -11,10 +11,10 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
-#include "core/child_process_call.h"
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/mesh_up_axis.h"
+#include "dnurbs/core/child_process_call.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/mesh_up_axis.h"
 
 namespace dnurbs {
 namespace {

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "io/mesh_up_axis.h"
+#include "dnurbs/io/mesh_up_axis.h"
 
 #include <string>
 
-#include "core/input_file.h"
+#include "dnurbs/core/input_file.h"
 
 namespace dnurbs {
 

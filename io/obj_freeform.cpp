@@ -1,4 +1,4 @@
-#include "io/obj_freeform.h"
+#include "dnurbs/io/obj_freeform.h"
 
 #include <algorithm>
 #include <array>
@@ -12,10 +12,10 @@
 #include <utility>
 #include <variant>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/atomic_write.h"
-#include "nurbs/periodic_form.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 namespace dnurbs {
 namespace {

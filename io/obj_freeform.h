@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "io/output_path.h"
+#include "dnurbs/io/output_path.h"
 
 #include <algorithm>
 #include <system_error>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "io/preview.h"
+#include "dnurbs/io/preview.h"
 
 #include <sys/wait.h>
 
@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <system_error>
 
-#include "core/error.h"
-#include "io/atomic_write.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/atomic_write.h"
 
 namespace dnurbs {
 namespace {

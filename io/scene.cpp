@@ -1,4 +1,4 @@
-#include "io/scene.h"
+#include "dnurbs/io/scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,14 @@
 #include <sstream>
 #include <utility>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/animated_gltf.h"
-#include "io/cad_file.h"
-#include "io/json_messages.h"
-#include "io/scene_reader.h"
-#include "io/scene_registry.h"
-#include "io/scene_writer.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/animated_gltf.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_registry.h"
+#include "dnurbs/io/scene_writer.h"
 
 namespace dnurbs {
 namespace {

@@ -19,9 +19,9 @@
 
 #include <Eigen/Core>
 
-#include "io/clone_ptr.h"
-#include "io/scene_spec.h"
-#include "io/schedule.h"
+#include "dnurbs/io/clone_ptr.h"
+#include "dnurbs/io/scene_spec.h"
+#include "dnurbs/io/schedule.h"
 
 namespace dnurbs {
 

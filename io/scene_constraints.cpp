@@ -1,10 +1,10 @@
-#include "io/scene_constraints.h"
+#include "dnurbs/io/scene_constraints.h"
 
 #include <utility>
 
-#include "constraints/point_constraints.h"
-#include "constraints/surface_constraints.h"
-#include "io/json_messages.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/constraints/surface_constraints.h"
+#include "dnurbs/io/json_messages.h"
 
 // Each constraint type's keys are read by read_keys, written by write_keys (after "type"),
 // turned into library constraints by add_constraints and into the parameters of local sculpting

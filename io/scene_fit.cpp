@@ -1,4 +1,4 @@
-#include "io/scene_fit.h"
+#include "dnurbs/io/scene_fit.h"
 
 #include <string>
 #include <vector>
@@ -6,12 +6,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "design/dnurbs_fitting.h"
-#include "design/point_set.h"
-#include "io/mesh_import.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/design/dnurbs_fitting.h"
+#include "dnurbs/design/point_set.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs {
 

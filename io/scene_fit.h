@@ -7,10 +7,10 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "io/scene.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

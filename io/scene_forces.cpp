@@ -1,8 +1,8 @@
-#include "io/scene_forces.h"
+#include "dnurbs/io/scene_forces.h"
 
 #include <string>
 
-#include "dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/forces.h"
 
 namespace dnurbs {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

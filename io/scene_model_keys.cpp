@@ -1,4 +1,4 @@
-#include "io/scene_model_keys.h"
+#include "dnurbs/io/scene_model_keys.h"
 
 #include <vector>
 

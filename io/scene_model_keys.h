@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
-#include "io/scene_writer.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
+#include "dnurbs/io/scene_writer.h"
 
 namespace dnurbs {
 

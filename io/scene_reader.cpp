@@ -1,12 +1,12 @@
-#include "io/scene_reader.h"
+#include "dnurbs/io/scene_reader.h"
 
 #include <functional>
 
 #include <utility>
 
-#include "core/error.h"
-#include "io/json_messages.h"
-#include "io/output_path.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/output_path.h"
 
 namespace dnurbs {
 namespace {

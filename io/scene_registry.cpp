@@ -1,14 +1,14 @@
-#include "io/scene_registry.h"
+#include "dnurbs/io/scene_registry.h"
 
-#include "io/scene_constraints.h"
-#include "io/scene_forces.h"
+#include "dnurbs/io/scene_constraints.h"
+#include "dnurbs/io/scene_forces.h"
 
 namespace dnurbs {
 
 // The readers of io/scene_model_types.def, defined in io/models/.
 #define DNURBS_SCENE_MODEL_TYPE(type, reader, border, points, local_sculpting) \
   std::unique_ptr<SceneModelSpec> reader(const SceneReader&, const JsonValue&, const std::string&);
-#include "io/scene_model_types.def"
+#include "dnurbs/io/scene_model_types.def"
 #undef DNURBS_SCENE_MODEL_TYPE
 
 namespace {
@@ -17,7 +17,7 @@ std::vector<SceneModelType>& model_types() {
   static std::vector<SceneModelType> types = {
 #define DNURBS_SCENE_MODEL_TYPE(type, reader, border, points, local_sculpting) \
   {#type, &(reader), border, points, local_sculpting},
-#include "io/scene_model_types.def"
+#include "dnurbs/io/scene_model_types.def"
 #undef DNURBS_SCENE_MODEL_TYPE
   };
   return types;

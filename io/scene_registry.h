@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

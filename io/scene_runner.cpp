@@ -1,19 +1,19 @@
-#include "io/scene_runner.h"
+#include "dnurbs/io/scene_runner.h"
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <system_error>
 
-#include "core/error.h"
-#include "io/animated_gltf.h"
-#include "io/atomic_write.h"
-#include "io/cad_file.h"
-#include "io/csv_log.h"
-#include "io/mesh_export.h"
-#include "io/obj_freeform.h"
-#include "io/output_path.h"
-#include "io/shape_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/animated_gltf.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/io/csv_log.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/io/obj_freeform.h"
+#include "dnurbs/io/output_path.h"
+#include "dnurbs/io/shape_file.h"
 
 namespace dnurbs {
 namespace {

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_simulation.h"
+#include "dnurbs/io/scene_simulation.h"
 
 namespace dnurbs {
 

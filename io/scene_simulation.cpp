@@ -1,4 +1,4 @@
-#include "io/scene_simulation.h"
+#include "dnurbs/io/scene_simulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,13 +12,13 @@
 
 #include <Eigen/SparseCholesky>
 
-#include "core/fixed_coordinates.h"
-#include "core/kronecker.h"
-#include "core/memory_budget.h"
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/core/sculpted_region.h"
-#include "io/json_messages.h"
-#include "io/scene_fit.h"
+#include "dnurbs/core/fixed_coordinates.h"
+#include "dnurbs/core/kronecker.h"
+#include "dnurbs/core/memory_budget.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/core/sculpted_region.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/scene_fit.h"
 
 namespace dnurbs {
 namespace {

@@ -11,14 +11,14 @@
 
 #include <Eigen/Core>
 
-#include "constraints/constraint_solver.h"
-#include "core/error.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/energy_budget.h"
-#include "dynamics/integrators/integrator.h"
-#include "io/checkpoint.h"
-#include "io/scene.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/energy_budget.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/io/checkpoint.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

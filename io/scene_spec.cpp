@@ -1,4 +1,4 @@
-#include "io/scene_spec.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

@@ -12,11 +12,11 @@
 
 #include <Eigen/Core>
 
-#include "constraints/constraint_solver.h"
-#include "core/error.h"
-#include "dynamics/core/model.h"
-#include "dynamics/core/system.h"
-#include "io/scene_writer.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/io/scene_writer.h"
 
 namespace dnurbs {
 

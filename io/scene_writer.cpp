@@ -1,4 +1,4 @@
-#include "io/scene_writer.h"
+#include "dnurbs/io/scene_writer.h"
 
 namespace dnurbs {
 

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "io/schedule.h"
+#include "dnurbs/io/schedule.h"
 
 namespace dnurbs {
 

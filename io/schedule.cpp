@@ -1,4 +1,4 @@
-#include "io/schedule.h"
+#include "dnurbs/io/schedule.h"
 
 #include <memory>
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "constraints/target_trajectory.h"
-#include "dynamics/core/forces.h"
+#include "dnurbs/constraints/target_trajectory.h"
+#include "dnurbs/dynamics/core/forces.h"
 
 namespace dnurbs {
 

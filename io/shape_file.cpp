@@ -1,4 +1,4 @@
-#include "io/shape_file.h"
+#include "dnurbs/io/shape_file.h"
 
 #include <cmath>
 #include <cstdio>
@@ -10,12 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/atomic_write.h"
-#include "io/cad_file.h"
-#include "io/json_messages.h"
-#include "io/obj_freeform.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/obj_freeform.h"
 
 namespace dnurbs {
 namespace {

@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <string>
 
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "io/shape_recipe.h"
+#include "dnurbs/io/shape_recipe.h"
 
 #include <algorithm>
 #include <functional>
@@ -6,11 +6,11 @@
 #include <optional>
 #include <variant>
 
-#include "core/error.h"
-#include "io/json_messages.h"
-#include "io/shape_file.h"
-#include "nurbs/primitive_shapes.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs {
 namespace {

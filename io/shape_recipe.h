@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_reader.h"
-#include "nurbs/shape.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

@@ -1,15 +1,15 @@
-#include "io/triangular_shape_file.h"
+#include "dnurbs/io/triangular_shape_file.h"
 
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <utility>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "io/atomic_write.h"
-#include "io/json_messages.h"
-#include "nurbs/triangular_knot_clouds.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/nurbs/triangular_knot_clouds.h"
 
 namespace dnurbs {
 namespace {

@@ -21,8 +21,8 @@
 #include <filesystem>
 #include <string>
 
-#include "io/scene_reader.h"
-#include "nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "nurbs/basis_functions.h"
+#include "dnurbs/nurbs/basis_functions.h"
 
 #include <array>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

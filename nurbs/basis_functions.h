@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

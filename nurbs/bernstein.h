@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

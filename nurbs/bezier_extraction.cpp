@@ -1,6 +1,6 @@
-#include "nurbs/bezier_extraction.h"
+#include "dnurbs/nurbs/bezier_extraction.h"
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

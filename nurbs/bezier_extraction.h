@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "nurbs/closest_point.h"
+#include "dnurbs/nurbs/closest_point.h"
 
 namespace dnurbs {
 

@@ -7,10 +7,10 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/curve_projector.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
-#include "nurbs/surface_projector.h"
+#include "dnurbs/nurbs/curve_projector.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/surface_projector.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "nurbs/curve_projector.h"
+#include "dnurbs/nurbs/curve_projector.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
 
-#include "core/error.h"
-#include "nurbs/bezier_extraction.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/bezier_extraction.h"
 
 namespace dnurbs {
 namespace {

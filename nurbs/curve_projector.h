@@ -12,9 +12,9 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/bernstein.h"
-#include "nurbs/nearest_candidate.h"
-#include "nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/bernstein.h"
+#include "dnurbs/nurbs/nearest_candidate.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
 
 namespace dnurbs {
 

@@ -1,11 +1,11 @@
-#include "nurbs/degree_elevation.h"
+#include "dnurbs/nurbs/degree_elevation.h"
 
 #include <algorithm>
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/periodic_window.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/periodic_window.h"
 
 namespace dnurbs {
 namespace {

@@ -3,9 +3,9 @@
 // done on homogeneous control points (w P, w) by blossoming (Ramshaw, Blossoms are polar forms,
 // CAGD 6, 1989; Prautzsch, Degree elevation of B-spline curves, CAGD 1, 1984).
 
-#include "nurbs/knot_insertion.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

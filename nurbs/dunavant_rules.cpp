@@ -1,4 +1,4 @@
-#include "nurbs/dunavant_rules.h"
+#include "dnurbs/nurbs/dunavant_rules.h"
 
 #include <array>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <Eigen/QR>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "nurbs/jacobian.h"
+#include "dnurbs/nurbs/jacobian.h"
 
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -9,9 +9,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "nurbs/basis_functions.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/knot_insertion.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

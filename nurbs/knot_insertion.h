@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/knot_vector.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "nurbs/knot_removal.h"
+#include "dnurbs/nurbs/knot_removal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 
 #include <Eigen/QR>
 
-#include "core/error.h"
-#include "nurbs/periodic_window.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/periodic_window.h"
 
 namespace dnurbs {
 namespace {

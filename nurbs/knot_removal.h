@@ -2,9 +2,9 @@
 // Tolerance-bounded knot removal of open and periodic NURBS curves and surfaces (Piegl & Tiller,
 // The NURBS Book, section 5.4 and eq. 5.30), done on homogeneous control points (w P, w).
 
-#include "nurbs/knot_insertion.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

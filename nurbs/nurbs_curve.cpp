@@ -1,11 +1,11 @@
-#include "nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
 
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "nurbs/rational_validation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/rational_validation.h"
 
 namespace dnurbs {
 

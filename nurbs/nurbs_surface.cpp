@@ -1,12 +1,12 @@
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "nurbs/rational_validation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/rational_validation.h"
 
 namespace dnurbs {
 namespace {

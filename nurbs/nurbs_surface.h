@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/basis_functions.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

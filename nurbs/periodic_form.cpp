@@ -1,4 +1,4 @@
-#include "nurbs/periodic_form.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -4,9 +4,9 @@
 // first p control points repeated at the end (the same curve over the same domain), and a file's
 // open shape is read back as periodic when its knots and control points have exactly that form.
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/shape.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "nurbs/periodic_window.h"
+#include "dnurbs/nurbs/periodic_window.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/knot_insertion.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
 // Exact rational shapes: circles, arcs and surfaces of revolution (Piegl & Tiller ch. 7-8).
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

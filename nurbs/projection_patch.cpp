@@ -1,4 +1,4 @@
-#include "nurbs/projection_patch.h"
+#include "dnurbs/nurbs/projection_patch.h"
 
 #include <algorithm>
 #include <array>
@@ -8,9 +8,9 @@
 
 #include <Eigen/Dense>
 
-#include "nurbs/bernstein.h"
-#include "nurbs/knot_vector.h"
-#include "nurbs/nearest_candidate.h"
+#include "dnurbs/nurbs/bernstein.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nearest_candidate.h"
 
 namespace dnurbs {
 namespace {

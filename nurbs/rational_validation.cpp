@@ -1,8 +1,8 @@
-#include "nurbs/rational_validation.h"
+#include "dnurbs/nurbs/rational_validation.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

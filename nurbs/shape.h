@@ -4,8 +4,8 @@
 
 #include <variant>
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

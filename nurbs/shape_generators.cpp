@@ -1,4 +1,4 @@
-#include "nurbs/shape_generators.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 
 #include <Eigen/LU>
 
-#include "core/error.h"
-#include "nurbs/basis_functions.h"
-#include "nurbs/degree_elevation.h"
-#include "nurbs/knot_insertion.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/degree_elevation.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

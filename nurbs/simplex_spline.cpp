@@ -1,10 +1,10 @@
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

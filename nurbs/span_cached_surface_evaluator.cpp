@@ -1,10 +1,10 @@
-#include "nurbs/span_cached_surface_evaluator.h"
+#include "dnurbs/nurbs/span_cached_surface_evaluator.h"
 
 #include <algorithm>
 #include <array>
 
-#include "core/error.h"
-#include "nurbs/basis_functions.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/basis_functions.h"
 
 namespace dnurbs {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -1,13 +1,13 @@
-#include "nurbs/surface_projector.h"
+#include "dnurbs/nurbs/surface_projector.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
 
-#include "core/error.h"
-#include "nurbs/basis_functions.h"
-#include "nurbs/bezier_extraction.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/bezier_extraction.h"
 
 namespace dnurbs {
 namespace {

@@ -11,10 +11,10 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/curve_projector.h"
-#include "nurbs/nearest_candidate.h"
-#include "nurbs/nurbs_surface.h"
-#include "nurbs/projection_patch.h"
+#include "dnurbs/nurbs/curve_projector.h"
+#include "dnurbs/nurbs/nearest_candidate.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/projection_patch.h"
 
 namespace dnurbs {
 

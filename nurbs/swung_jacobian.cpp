@@ -1,10 +1,10 @@
-#include "nurbs/swung_jacobian.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
 
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/basis_functions.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/basis_functions.h"
 
 namespace dnurbs {
 namespace {

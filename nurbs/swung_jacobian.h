@@ -15,9 +15,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "nurbs/jacobian.h"
-#include "nurbs/knot_vector.h"
-#include "nurbs/swung_surface.h"
+#include "dnurbs/nurbs/jacobian.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 namespace dnurbs {
 

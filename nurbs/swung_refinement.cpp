@@ -1,9 +1,9 @@
-#include "nurbs/swung_refinement.h"
+#include "dnurbs/nurbs/swung_refinement.h"
 
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/knot_insertion.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/knot_insertion.h"
 
 namespace dnurbs {
 namespace {

@@ -4,7 +4,7 @@
 // D-NURBS model of it has more coordinates to sculpt with (Qin & Terzopoulos, Dynamic NURBS
 // swung surfaces for physics-based shape design, CAD 27(2) 1995).
 
-#include "nurbs/swung_surface.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs {
 

@@ -4,7 +4,7 @@
 // with the periodic unit circle (Piegl & Tiller ch. 7) as trajectory and alpha = 1, so that the
 // profile's x coordinate is the distance from the z axis.
 
-#include "nurbs/swung_surface.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 namespace dnurbs {
 

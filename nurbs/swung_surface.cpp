@@ -1,8 +1,8 @@
-#include "nurbs/swung_surface.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "nurbs/triangular_bspline_basis.h"
+#include "dnurbs/nurbs/triangular_bspline_basis.h"
 
 #include <algorithm>
 #include <cstdint>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

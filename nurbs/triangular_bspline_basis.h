@@ -29,9 +29,9 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/simplex_spline.h"
-#include "nurbs/triangular_knot_clouds.h"
-#include "nurbs/triangulation.h"
+#include "dnurbs/nurbs/simplex_spline.h"
+#include "dnurbs/nurbs/triangular_knot_clouds.h"
+#include "dnurbs/nurbs/triangulation.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "nurbs/triangular_knot_clouds.h"
+#include "dnurbs/nurbs/triangular_knot_clouds.h"
 
 #include <algorithm>
 #include <array>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 
 namespace dnurbs {
 

@@ -25,7 +25,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/triangulation.h"
+#include "dnurbs/nurbs/triangulation.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
 
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/triangular_bspline_basis.h"
+#include "dnurbs/nurbs/triangular_bspline_basis.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "nurbs/triangular_polynomial_cells.h"
+#include "dnurbs/nurbs/triangular_polynomial_cells.h"
 
 #include <algorithm>
 #include <array>
@@ -6,8 +6,8 @@
 #include <set>
 #include <utility>
 
-#include "core/error.h"
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "nurbs/triangulation.h"
+#include "dnurbs/nurbs/triangulation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
-#include "core/error.h"
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 
 namespace dnurbs {
 

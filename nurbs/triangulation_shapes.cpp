@@ -1,4 +1,4 @@
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

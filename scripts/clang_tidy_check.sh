@@ -3,7 +3,8 @@
 # needs a build directory configured with CMAKE_EXPORT_COMPILE_COMMANDS=ON (scripts/build.sh does
 # that). Any warning fails the check. Also checks the size limits of the library: no file over
 # 600 lines (functions over 120 lines are clang-tidy's readability-function-size), and that
-# every C++ file of the library, tools, tests, benchmarks and examples is clang-format clean.
+# every C++ file of the library, tools, tests, benchmarks and examples is clang-format clean and
+# includes the library's headers with the dnurbs/ prefix.
 # Usage: scripts/clang_tidy_check.sh [BUILD_DIR]; JOBS=N runs N clang-tidy processes.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -42,6 +43,16 @@ unformatted="$(find "${existing[@]}" "${formatted[@]}" -name '*.cpp' -o -name '*
 if [ -n "$unformatted" ]; then
   echo "clang_tidy_check: not clang-format clean (run clang-format -i on them):" >&2
   echo "$unformatted" >&2
+  status=1
+fi
+# The library's headers are included with the project prefix everywhere ("dnurbs/io/scene.h",
+# CMakeLists.txt): an installed header that included "io/scene.h" would not compile for a user.
+library_folders="core|nurbs|surface|vision|dynamics|constraints|cad|design|io|sculpt"
+unprefixed="$(find "${existing[@]}" "${formatted[@]}" -name '*.cpp' -o -name '*.h' -o -name '*.def' |
+  sort | xargs grep -nE "^#[[:space:]]*include[[:space:]]+\"(${library_folders})/" || true)"
+if [ -n "$unprefixed" ]; then
+  echo "clang_tidy_check: library headers included without the dnurbs/ prefix:" >&2
+  echo "$unprefixed" >&2
   status=1
 fi
 start=$(date +%s)

@@ -1,9 +1,9 @@
-#include "sculpt/sculpt_frame.h"
+#include "dnurbs/sculpt/sculpt_frame.h"
 
 #include <bit>
 #include <cstring>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "sculpt/sculpt_request.h"
+#include "dnurbs/sculpt/sculpt_request.h"
 
 #include <array>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/json_messages.h"
+#include "dnurbs/io/json_messages.h"
 
 namespace dnurbs {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "sculpt/sculpt_scene.h"
+#include "dnurbs/sculpt/sculpt_scene.h"
 
 #include <cstddef>
 #include <string>

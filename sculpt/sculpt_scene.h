@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "io/scene.h"
-#include "sculpt/sculpt_request.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/sculpt/sculpt_request.h"
 
 namespace dnurbs {
 

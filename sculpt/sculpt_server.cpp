@@ -1,4 +1,4 @@
-#include "sculpt/sculpt_server.h"
+#include "dnurbs/sculpt/sculpt_server.h"
 
 #include <algorithm>
 #include <atomic>
@@ -22,7 +22,7 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -13,7 +13,7 @@
 #include <memory>
 #include <string>
 
-#include "sculpt/sculpt_session.h"
+#include "dnurbs/sculpt/sculpt_session.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "sculpt/sculpt_session.h"
+#include "dnurbs/sculpt/sculpt_session.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/mesh_export.h"
-#include "io/output_path.h"
-#include "io/shape_file.h"
-#include "sculpt/sculpt_frame.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/io/output_path.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/sculpt/sculpt_frame.h"
 
 namespace dnurbs {
 namespace {

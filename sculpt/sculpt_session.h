@@ -24,10 +24,10 @@
 
 #include <Eigen/Core>
 
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "sculpt/sculpt_request.h"
-#include "sculpt/sculpt_scene.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/sculpt/sculpt_request.h"
+#include "dnurbs/sculpt/sculpt_scene.h"
 
 namespace dnurbs {
 

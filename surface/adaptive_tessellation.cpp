@@ -1,4 +1,4 @@
-#include "surface/adaptive_tessellation.h"
+#include "dnurbs/surface/adaptive_tessellation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

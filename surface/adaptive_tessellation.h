@@ -6,9 +6,9 @@
 #include <limits>
 #include <string>
 
-#include "surface/parametric_surface.h"
-#include "surface/restricted_mesh.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/restricted_mesh.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "surface/deformable_superquadric_shape.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
 
 #include <cmath>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "core/error.h"
-#include "surface/signed_power.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/signed_power.h"
 
 namespace dnurbs {
 

@@ -14,8 +14,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "surface/global_deformation.h"
-#include "surface/superellipsoid.h"
+#include "dnurbs/surface/global_deformation.h"
+#include "dnurbs/surface/superellipsoid.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "surface/deformation_field.h"
+#include "dnurbs/surface/deformation_field.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

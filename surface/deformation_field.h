@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "surface/parametric_surface.h"
+#include "dnurbs/surface/parametric_surface.h"
 
 namespace dnurbs {
 

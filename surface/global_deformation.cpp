@@ -1,9 +1,9 @@
-#include "surface/global_deformation.h"
+#include "dnurbs/surface/global_deformation.h"
 
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,11 +1,11 @@
-#include "surface/grid.h"
+#include "dnurbs/surface/grid.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

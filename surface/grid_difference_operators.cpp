@@ -1,8 +1,8 @@
-#include "surface/grid_difference_operators.h"
+#include "dnurbs/surface/grid_difference_operators.h"
 
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

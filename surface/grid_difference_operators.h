@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "surface/grid.h"
+#include "dnurbs/surface/grid.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "surface/node_chain.h"
+#include "dnurbs/surface/node_chain.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,13 +1,13 @@
-#include "surface/parametric_fe_mesh.h"
+#include "dnurbs/surface/parametric_fe_mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
-#include "core/error.h"
-#include "core/kronecker.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 namespace {

@@ -1,11 +1,11 @@
-#include "surface/parametric_surface.h"
+#include "dnurbs/surface/parametric_surface.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

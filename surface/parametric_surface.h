@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/nurbs_surface.h"
-#include "surface/deformable_superquadric_shape.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "surface/parametric_surface_mesh_builder.h"
+#include "dnurbs/surface/parametric_surface_mesh_builder.h"
 
 #include <utility>
 

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "surface/parametric_surface.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "surface/parametric_surface_tessellation.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
 
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
-#include "surface/parametric_surface_mesh_builder.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/parametric_surface_mesh_builder.h"
 
 namespace dnurbs {
 

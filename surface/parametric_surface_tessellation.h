@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "surface/parametric_surface.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

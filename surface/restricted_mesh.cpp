@@ -1,11 +1,11 @@
-#include "surface/restricted_mesh.h"
+#include "dnurbs/surface/restricted_mesh.h"
 
 #include <algorithm>
 #include <cstdlib>
 #include <utility>
 
-#include "core/error.h"
-#include "surface/parametric_surface_mesh_builder.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/parametric_surface_mesh_builder.h"
 
 namespace dnurbs {
 namespace {

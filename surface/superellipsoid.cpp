@@ -1,9 +1,9 @@
-#include "surface/superellipsoid.h"
+#include "dnurbs/surface/superellipsoid.h"
 
 #include <cmath>
 
-#include "core/error.h"
-#include "surface/signed_power.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/signed_power.h"
 
 namespace dnurbs {
 

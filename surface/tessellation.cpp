@@ -1,4 +1,4 @@
-#include "surface/tessellation.h"
+#include "dnurbs/surface/tessellation.h"
 
 #include <cmath>
 #include <numbers>
@@ -7,8 +7,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "core/memory_budget.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/memory_budget.h"
 
 namespace dnurbs {
 namespace {

@@ -6,9 +6,9 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

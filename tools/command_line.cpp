@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs::tools {
 

@@ -8,13 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/progress_report.h"
-#include "design/energy_minimization.h"
-#include "io/mesh_export.h"
-#include "io/output_path.h"
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "io/shape_file.h"
+#include "dnurbs/core/progress_report.h"
+#include "dnurbs/design/energy_minimization.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/io/output_path.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/io/shape_file.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/version.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/version.h"
 #include "tools/command_line.h"
 #include "tools/design_command.h"
 #include "tools/eval_command.h"

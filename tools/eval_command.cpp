@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/shape_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/shape_file.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

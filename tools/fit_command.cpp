@@ -12,19 +12,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/progress_report.h"
-#include "design/dnurbs_fitting.h"
-#include "design/point_set.h"
-#include "design/superquadric_fitting.h"
-#include "io/atomic_write.h"
-#include "io/mesh_export.h"
-#include "io/output_path.h"
-#include "io/scene_fit.h"
-#include "io/shape_file.h"
-#include "surface/parametric_surface.h"
-#include "surface/parametric_surface_tessellation.h"
-#include "surface/tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/progress_report.h"
+#include "dnurbs/design/dnurbs_fitting.h"
+#include "dnurbs/design/point_set.h"
+#include "dnurbs/design/superquadric_fitting.h"
+#include "dnurbs/io/atomic_write.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/io/output_path.h"
+#include "dnurbs/io/scene_fit.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
+#include "dnurbs/surface/tessellation.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

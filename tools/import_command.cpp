@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "io/shape_file.h"
+#include "dnurbs/io/shape_file.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

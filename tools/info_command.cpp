@@ -7,9 +7,9 @@
 #include <string>
 #include <variant>
 
-#include "dynamics/integrators/integrator.h"
-#include "io/scene.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
 #include "tools/command_line.h"
 #include "tools/run_command.h"
 

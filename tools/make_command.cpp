@@ -5,10 +5,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/scene_reader.h"
-#include "io/shape_file.h"
-#include "io/shape_recipe.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/io/shape_recipe.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

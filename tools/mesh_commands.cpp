@@ -11,18 +11,18 @@
 #include <system_error>
 #include <variant>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "dynamics/triangular/triangular_tessellation.h"
-#include "io/cad_file.h"
-#include "io/mesh_export.h"
-#include "io/mesh_import.h"
-#include "io/obj_freeform.h"
-#include "io/preview.h"
-#include "io/shape_file.h"
-#include "io/triangular_shape_file.h"
-#include "surface/adaptive_tessellation.h"
-#include "surface/tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/dynamics/triangular/triangular_tessellation.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/obj_freeform.h"
+#include "dnurbs/io/preview.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/io/triangular_shape_file.h"
+#include "dnurbs/surface/adaptive_tessellation.h"
+#include "dnurbs/surface/tessellation.h"
 #include "tools/command_line.h"
 
 namespace dnurbs::tools {

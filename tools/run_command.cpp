@@ -7,11 +7,11 @@
 #include <optional>
 #include <sstream>
 
-#include "core/error.h"
-#include "core/progress_report.h"
-#include "io/scene.h"
-#include "io/scene_runner.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/progress_report.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_runner.h"
+#include "dnurbs/io/scene_simulation.h"
 #include "tools/command_line.h"
 #include "tools/mesh_commands.h"
 

@@ -4,10 +4,10 @@
 #include <optional>
 #include <utility>
 
-#include "core/error.h"
-#include "io/scene.h"
-#include "sculpt/sculpt_server.h"
-#include "sculpt/sculpt_session.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/sculpt/sculpt_server.h"
+#include "dnurbs/sculpt/sculpt_session.h"
 #include "tools/command_line.h"
 #include "tools/run_command.h"
 

@@ -1,9 +1,9 @@
-#include "vision/affine_cell_decomposition.h"
+#include "dnurbs/vision/affine_cell_decomposition.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

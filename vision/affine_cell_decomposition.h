@@ -11,8 +11,8 @@
 #include <array>
 #include <vector>
 
-#include "vision/contour.h"
-#include "vision/freudenthal_grid.h"
+#include "dnurbs/vision/contour.h"
+#include "dnurbs/vision/freudenthal_grid.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "vision/contour.h"
+#include "dnurbs/vision/contour.h"
 
 #include <algorithm>
 #include <cmath>

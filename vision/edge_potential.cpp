@@ -1,15 +1,15 @@
-#include "vision/edge_potential.h"
+#include "dnurbs/vision/edge_potential.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 
-#include "core/error.h"
-#include "vision/cubic_interpolation.h"
-#include "vision/gaussian_filter.h"
-#include "vision/volume.h"
-#include "vision/volume_edge_potential.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/vision/cubic_interpolation.h"
+#include "dnurbs/vision/gaussian_filter.h"
+#include "dnurbs/vision/volume.h"
+#include "dnurbs/vision/volume_edge_potential.h"
 
 namespace dnurbs {
 namespace {

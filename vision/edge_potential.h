@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "vision/image.h"
+#include "dnurbs/vision/image.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "vision/freudenthal_grid.h"
+#include "dnurbs/vision/freudenthal_grid.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "vision/gaussian_filter.h"
+#include "dnurbs/vision/gaussian_filter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "vision/image.h"
-#include "vision/volume.h"
+#include "dnurbs/vision/image.h"
+#include "dnurbs/vision/volume.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "vision/image.h"
+#include "dnurbs/vision/image.h"
 
 #include <png.h>
 
@@ -11,8 +11,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/error.h"
-#include "core/input_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "vision/mesh_topology.h"
+#include "dnurbs/vision/mesh_topology.h"
 
 #include <algorithm>
 #include <map>
@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

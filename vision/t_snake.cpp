@@ -1,11 +1,11 @@
-#include "vision/t_snake.h"
+#include "dnurbs/vision/t_snake.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -11,12 +11,12 @@
 
 #include <Eigen/Core>
 
-#include "vision/affine_cell_decomposition.h"
-#include "vision/contour.h"
-#include "vision/edge_potential.h"
-#include "vision/freudenthal_grid.h"
-#include "vision/image.h"
-#include "vision/topology_adaptive_parameters.h"
+#include "dnurbs/vision/affine_cell_decomposition.h"
+#include "dnurbs/vision/contour.h"
+#include "dnurbs/vision/edge_potential.h"
+#include "dnurbs/vision/freudenthal_grid.h"
+#include "dnurbs/vision/image.h"
+#include "dnurbs/vision/topology_adaptive_parameters.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "vision/t_surface.h"
+#include "dnurbs/vision/t_surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -10,12 +10,12 @@
 
 #include <Eigen/Core>
 
-#include "surface/triangle_mesh.h"
-#include "vision/tetrahedral_decomposition.h"
-#include "vision/tetrahedral_grid.h"
-#include "vision/topology_adaptive_parameters.h"
-#include "vision/volume.h"
-#include "vision/volume_edge_potential.h"
+#include "dnurbs/surface/triangle_mesh.h"
+#include "dnurbs/vision/tetrahedral_decomposition.h"
+#include "dnurbs/vision/tetrahedral_grid.h"
+#include "dnurbs/vision/topology_adaptive_parameters.h"
+#include "dnurbs/vision/volume.h"
+#include "dnurbs/vision/volume_edge_potential.h"
 
 namespace dnurbs {
 

@@ -1,11 +1,11 @@
-#include "vision/tetrahedral_decomposition.h"
+#include "dnurbs/vision/tetrahedral_decomposition.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

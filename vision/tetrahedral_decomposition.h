@@ -11,9 +11,9 @@
 #include <functional>
 #include <vector>
 
-#include "surface/triangle_mesh.h"
-#include "vision/affine_cell_decomposition.h"
-#include "vision/tetrahedral_grid.h"
+#include "dnurbs/surface/triangle_mesh.h"
+#include "dnurbs/vision/affine_cell_decomposition.h"
+#include "dnurbs/vision/tetrahedral_grid.h"
 
 namespace dnurbs {
 

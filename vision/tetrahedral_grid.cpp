@@ -1,8 +1,8 @@
-#include "vision/tetrahedral_grid.h"
+#include "dnurbs/vision/tetrahedral_grid.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "vision/topology_adaptive_parameters.h"
+#include "dnurbs/vision/topology_adaptive_parameters.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

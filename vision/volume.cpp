@@ -1,4 +1,4 @@
-#include "vision/volume.h"
+#include "dnurbs/vision/volume.h"
 
 #include <zlib.h>
 
@@ -12,10 +12,10 @@
 #include <map>
 #include <sstream>
 
-#include "core/error.h"
-#include "core/input_file.h"
-#include "core/memory_budget.h"
-#include "vision/image.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
+#include "dnurbs/core/memory_budget.h"
+#include "dnurbs/vision/image.h"
 
 namespace dnurbs {
 

@@ -3,8 +3,8 @@
 // Topology-Adaptive and Generalized Formulations, section 3.2): EdgePotential<3> of
 // vision/edge_potential.h, interpolated tricubically (64 samples around a point).
 
-#include "vision/edge_potential.h"
-#include "vision/volume.h"
+#include "dnurbs/vision/edge_potential.h"
+#include "dnurbs/vision/volume.h"
 
 namespace dnurbs {
 

@@ -5,9 +5,9 @@
 
 #include <Eigen/Geometry>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "surface/grid.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/surface/grid.h"
 
 namespace dnurbs::bench {
 

@@ -3,11 +3,11 @@
 // tests/grid): clamped D-NURBS strings and membranes, a spinning rigid superquadric, a pushed
 // Terzopoulos sheet and a PDE surface with a deformation region.
 
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/grid/pde_surface.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/grid/pde_surface.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 
 namespace dnurbs::bench {
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/SparseCholesky>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs::bench {
 

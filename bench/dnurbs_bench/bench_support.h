@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs::bench {
 

@@ -8,8 +8,8 @@
 #include <Eigen/Core>
 
 #include "bench_scenes.h"
-#include "core/error.h"
-#include "dynamics/core/forces.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
 #include "step_timing.h"
 
 namespace dnurbs::bench {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "bench_support.h"
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "machine.h"
 #include "needs.h"
 #include "scaling.h"

@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "bench_scenes.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/dnurbs/local_sculpting.h"
-#include "dynamics/integrators/static_equilibrium.h"
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "nurbs/swung_refinement.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/dnurbs/local_sculpting.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/nurbs/swung_refinement.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "step_timing.h"
 
 namespace dnurbs::bench {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "bench_scenes.h"
-#include "dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/forces.h"
 #include "step_timing.h"
 
 namespace dnurbs::bench {

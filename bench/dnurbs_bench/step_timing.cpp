@@ -1,7 +1,7 @@
 #include "step_timing.h"
 
 #include "bench_support.h"
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs::bench {
 

@@ -3,8 +3,8 @@
 
 #include <functional>
 
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 namespace dnurbs::bench {
 

@@ -10,11 +10,11 @@
 #include <Eigen/Eigenvalues>
 
 #include "bench_scenes.h"
-#include "constraints/constraint_solver.h"
-#include "constraints/point_constraints.h"
-#include "core/error.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/rigid_body_integrator.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/rigid_body_integrator.h"
 
 namespace dnurbs::bench {
 

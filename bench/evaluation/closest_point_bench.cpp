@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "nurbs/closest_point.h"
+#include "dnurbs/nurbs/closest_point.h"
 #include "tests/nurbs/brute_force_projection.h"
 
 #ifdef DNURBS_HAVE_OCCT

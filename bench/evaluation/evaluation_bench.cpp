@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "nurbs/nurbs_surface.h"
-#include "nurbs/span_cached_surface_evaluator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/span_cached_surface_evaluator.h"
 
 #ifdef DNURBS_HAVE_OCCT
 #include <GeomAdaptor_Surface.hxx>

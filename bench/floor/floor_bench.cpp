@@ -25,12 +25,12 @@
 #include <string>
 #include <vector>
 
-#include "core/fixed_coordinates.h"
-#include "core/kronecker.h"
-#include "core/sparse_cholesky.h"
-#include "io/scene.h"
-#include "io/scene_runner.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/fixed_coordinates.h"
+#include "dnurbs/core/kronecker.h"
+#include "dnurbs/core/sparse_cholesky.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_runner.h"
+#include "dnurbs/io/scene_simulation.h"
 
 namespace dnurbs::bench {
 namespace {

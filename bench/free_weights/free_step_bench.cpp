@@ -31,13 +31,13 @@
 #include <vector>
 
 #include "bench/common/interleaved_medians.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "nurbs/knot_vector.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 // Allocation counting: this executable's malloc, calloc and realloc take precedence over the C
 // library's for every library it loads (ELF symbol interposition) and forward to glibc's own.

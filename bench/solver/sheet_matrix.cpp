@@ -2,8 +2,8 @@
 
 #include <Eigen/Dense>
 
-#include "nurbs/basis_functions.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs::bench {
 

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "bench/solver/sheet_matrix.h"
-#include "core/cholmod_factor.h"
-#include "core/low_rank_update.h"
-#include "core/sparse_cholesky.h"
+#include "dnurbs/core/cholmod_factor.h"
+#include "dnurbs/core/low_rank_update.h"
+#include "dnurbs/core/sparse_cholesky.h"
 
 namespace dnurbs::bench {
 namespace {

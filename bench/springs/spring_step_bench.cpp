@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "bench/common/interleaved_medians.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "nurbs/knot_vector.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs::bench {
 namespace {

@@ -1,9 +1,9 @@
-#include "dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/forces.h"
 
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

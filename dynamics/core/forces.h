@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

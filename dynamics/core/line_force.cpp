@@ -1,8 +1,8 @@
-#include "dynamics/core/line_force.h"
+#include "dnurbs/dynamics/core/line_force.h"
 
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "dynamics/core/material_function.h"
+#include "dnurbs/dynamics/core/material_function.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

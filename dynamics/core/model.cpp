@@ -1,9 +1,9 @@
-#include "dynamics/core/model.h"
+#include "dnurbs/dynamics/core/model.h"
 
 #include <algorithm>
 
-#include "core/error.h"
-#include "core/kronecker.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
 
 namespace dnurbs {
 

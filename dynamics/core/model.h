@@ -22,12 +22,12 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "core/sparse_matrix.h"
-#include "dynamics/core/rigid_mass_properties.h"
-#include "dynamics/core/sculpted_region.h"
-#include "nurbs/shape.h"
-#include "surface/parametric_surface.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/core/sparse_matrix.h"
+#include "dnurbs/dynamics/core/rigid_mass_properties.h"
+#include "dnurbs/dynamics/core/sculpted_region.h"
+#include "dnurbs/nurbs/shape.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -1,16 +1,16 @@
-#include "dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
 
 #include <algorithm>
 #include <memory>
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
-#include "core/memory_budget.h"
-#include "surface/adaptive_tessellation.h"
-#include "surface/parametric_surface_tessellation.h"
-#include "surface/restricted_mesh.h"
-#include "surface/tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/memory_budget.h"
+#include "dnurbs/surface/adaptive_tessellation.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
+#include "dnurbs/surface/restricted_mesh.h"
+#include "dnurbs/surface/tessellation.h"
 
 namespace dnurbs {
 namespace {

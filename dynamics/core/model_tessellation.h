@@ -9,9 +9,9 @@
 
 #include <string>
 
-#include "dynamics/core/model.h"
-#include "surface/parametric_surface.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

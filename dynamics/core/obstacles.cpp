@@ -1,4 +1,4 @@
-#include "dynamics/core/obstacles.h"
+#include "dnurbs/dynamics/core/obstacles.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

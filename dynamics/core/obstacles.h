@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

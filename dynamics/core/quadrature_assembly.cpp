@@ -1,10 +1,10 @@
-#include "dynamics/core/quadrature_assembly.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
 
 #include <algorithm>
 
-#include "core/error.h"
-#include "nurbs/basis_functions.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 

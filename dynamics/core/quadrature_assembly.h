@@ -14,8 +14,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "dynamics/core/model.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "dynamics/core/spring.h"
+#include "dnurbs/dynamics/core/spring.h"
 
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 #include <atomic>
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

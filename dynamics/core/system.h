@@ -11,8 +11,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "dynamics/core/spring.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/spring.h"
 
 namespace dnurbs {
 

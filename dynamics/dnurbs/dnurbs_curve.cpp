@@ -1,6 +1,6 @@
-#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
 
-#include "dynamics/dnurbs/local_sculpting.h"
+#include "dnurbs/dynamics/dnurbs/local_sculpting.h"
 
 namespace dnurbs {
 

@@ -5,8 +5,8 @@
 
 #include <memory>
 
-#include "dynamics/dnurbs/dnurbs_model.h"
-#include "nurbs/nurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_model.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
 
 namespace dnurbs {
 

@@ -1,11 +1,11 @@
-#include "dynamics/dnurbs/dnurbs_model.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 

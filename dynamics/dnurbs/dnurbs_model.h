@@ -14,11 +14,11 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/material_function.h"
-#include "dynamics/core/quadrature_assembly.h"
-#include "dynamics/dnurbs/rational_control_net_model.h"
-#include "nurbs/jacobian.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/dynamics/core/material_function.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
+#include "dnurbs/dynamics/dnurbs/rational_control_net_model.h"
+#include "dnurbs/nurbs/jacobian.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 

@@ -2,7 +2,7 @@
 // (Terzopoulos, "Deformable Models: Classic, Topology-Adaptive and Generalized Formulations",
 // eqs. 1.25-1.26; the generalized inertial force of free weights, below eq. 1.24).
 
-#include "dynamics/dnurbs/dnurbs_model.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_model.h"
 
 #include <algorithm>
 #include <array>
@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
-#include "core/kronecker.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
 
 namespace dnurbs {
 

@@ -1,7 +1,7 @@
-#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 
-#include "dynamics/dnurbs/local_sculpting.h"
-#include "nurbs/jacobian.h"
+#include "dnurbs/dynamics/dnurbs/local_sculpting.h"
+#include "dnurbs/nurbs/jacobian.h"
 
 namespace dnurbs {
 

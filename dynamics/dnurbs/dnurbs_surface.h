@@ -5,8 +5,8 @@
 
 #include <memory>
 
-#include "dynamics/dnurbs/dnurbs_model.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_model.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs {
 

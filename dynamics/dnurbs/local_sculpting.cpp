@@ -1,9 +1,9 @@
-#include "dynamics/dnurbs/local_sculpting.h"
+#include "dnurbs/dynamics/dnurbs/local_sculpting.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

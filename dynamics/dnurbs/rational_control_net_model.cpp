@@ -1,11 +1,11 @@
-#include "dynamics/dnurbs/rational_control_net_model.h"
+#include "dnurbs/dynamics/dnurbs/rational_control_net_model.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "core/kronecker.h"
-#include "dynamics/core/quadrature_assembly.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
 
 namespace dnurbs {
 

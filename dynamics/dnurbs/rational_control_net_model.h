@@ -52,8 +52,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "nurbs/jacobian.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/nurbs/jacobian.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/grid/pde_surface.h"
+#include "dnurbs/dynamics/grid/pde_surface.h"
 
 #include <algorithm>
 #include <array>
@@ -7,9 +7,9 @@
 #include <Eigen/Geometry>
 #include <utility>
 
-#include "core/error.h"
-#include "core/kronecker.h"
-#include "surface/grid_difference_operators.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
+#include "dnurbs/surface/grid_difference_operators.h"
 
 namespace dnurbs {
 

@@ -28,10 +28,10 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
-#include "surface/grid.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/surface/grid.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/grid/snake.h"
+#include "dnurbs/dynamics/grid/snake.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
-#include "core/kronecker.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
 
 namespace dnurbs {
 

@@ -22,10 +22,10 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "dynamics/core/system.h"
-#include "surface/grid.h"
-#include "surface/node_chain.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/surface/grid.h"
+#include "dnurbs/surface/node_chain.h"
 
 namespace dnurbs {
 

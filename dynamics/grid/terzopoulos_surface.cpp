@@ -1,4 +1,4 @@
-#include "dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
 
 #include <array>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "core/error.h"
-#include "core/kronecker.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
 
 namespace dnurbs {
 

@@ -35,9 +35,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "surface/grid.h"
-#include "surface/grid_difference_operators.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/surface/grid.h"
+#include "dnurbs/surface/grid_difference_operators.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "dynamics/integrators/energy_budget.h"
+#include "dnurbs/dynamics/integrators/energy_budget.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -22,8 +22,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 

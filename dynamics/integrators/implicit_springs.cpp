@@ -1,8 +1,8 @@
-#include "dynamics/integrators/implicit_springs.h"
+#include "dnurbs/dynamics/integrators/implicit_springs.h"
 
 #include <algorithm>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -43,9 +43,9 @@
 #include <span>
 #include <vector>
 
-#include "core/fixed_coordinates.h"
-#include "core/low_rank_update.h"
-#include "dynamics/core/system.h"
+#include "dnurbs/core/fixed_coordinates.h"
+#include "dnurbs/core/low_rank_update.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "dynamics/integrators/step_blocks.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/integrators/step_blocks.h"
 
 namespace dnurbs {
 

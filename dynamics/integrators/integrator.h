@@ -47,9 +47,9 @@
 
 #include <Eigen/Core>
 
-#include "core/sparse_cholesky.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/implicit_springs.h"
+#include "dnurbs/core/sparse_cholesky.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/implicit_springs.h"
 
 namespace dnurbs {
 

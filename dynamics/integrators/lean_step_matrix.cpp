@@ -1,11 +1,11 @@
-#include "dynamics/integrators/lean_step_matrix.h"
+#include "dnurbs/dynamics/integrators/lean_step_matrix.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/OrderingMethods>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

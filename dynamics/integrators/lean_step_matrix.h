@@ -26,9 +26,9 @@
 
 #include <Eigen/Core>
 
-#include "core/cholmod_factor.h"
-#include "core/fixed_coordinates.h"
-#include "dynamics/core/model.h"
+#include "dnurbs/core/cholmod_factor.h"
+#include "dnurbs/core/fixed_coordinates.h"
+#include "dnurbs/dynamics/core/model.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/integrators/rigid_body_integrator.h"
+#include "dnurbs/dynamics/integrators/rigid_body_integrator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "core/error.h"
-#include "core/rotation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/rotation.h"
 
 namespace dnurbs {
 

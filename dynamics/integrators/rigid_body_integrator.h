@@ -21,7 +21,7 @@
 // no sparse factorization). The general Integrator (newmark) remains the scheme for deformable
 // models and constraints; this one does not take a solve hook.
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
 
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
-#include "core/kronecker.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
 
 namespace dnurbs {
 

@@ -16,7 +16,7 @@
 
 #include <Eigen/SparseLU>
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

@@ -1,11 +1,11 @@
-#include "dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
 
 #include <cmath>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

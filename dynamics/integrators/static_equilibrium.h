@@ -2,7 +2,7 @@
 // Static equilibrium of a linear system: K q = f on the free coordinates, the fixed ones held at
 // their current values (Terzopoulos 2003, eq. 1.24 with qdd = qd = 0 and g = 0).
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 namespace dnurbs {
 

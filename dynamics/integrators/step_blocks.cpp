@@ -1,10 +1,10 @@
-#include "dynamics/integrators/step_blocks.h"
+#include "dnurbs/dynamics/integrators/step_blocks.h"
 
 #include <limits>
 #include <optional>
 
-#include "core/error.h"
-#include "core/kronecker.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/kronecker.h"
 
 namespace dnurbs {
 

@@ -17,12 +17,12 @@
 
 #include <Eigen/Core>
 
-#include "core/fixed_coordinates.h"
-#include "core/free_row_product.h"
-#include "core/low_rank_update.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/implicit_springs.h"
-#include "dynamics/integrators/lean_step_matrix.h"
+#include "dnurbs/core/fixed_coordinates.h"
+#include "dnurbs/core/free_row_product.h"
+#include "dnurbs/core/low_rank_update.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/implicit_springs.h"
+#include "dnurbs/dynamics/integrators/lean_step_matrix.h"
 
 namespace dnurbs {
 

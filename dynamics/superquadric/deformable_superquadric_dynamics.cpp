@@ -1,7 +1,7 @@
 // The deformable superquadric's dynamics (Terzopoulos, "Deformable Models", eqs. 1.37-1.38):
 // M, D, K by quadrature, the internal and inertial forces and distributed applied forces.
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <utility>
 
-#include "core/error.h"
-#include "core/rotation.h"
-#include "dynamics/superquadric/superquadric_point_kinematics.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/rotation.h"
+#include "dnurbs/dynamics/superquadric/superquadric_point_kinematics.h"
 
 namespace dnurbs {
 

@@ -1,7 +1,7 @@
 // The deformable superquadric's kinematics (Terzopoulos, "Deformable Models", eqs. 1.34-1.36):
 // points, Jacobians and their rates, mass properties and momenta at a state.
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <utility>
 
-#include "core/error.h"
-#include "core/rotation.h"
-#include "dynamics/superquadric/superquadric_point_kinematics.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/rotation.h"
+#include "dnurbs/dynamics/superquadric/superquadric_point_kinematics.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 #include <numbers>
 #include <utility>
 
-#include "core/error.h"
-#include "core/rotation.h"
-#include "dynamics/superquadric/superquadric_point_kinematics.h"
-#include "dynamics/superquadric/superquadric_quadrature.h"
-#include "surface/signed_power.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/core/rotation.h"
+#include "dnurbs/dynamics/superquadric/superquadric_point_kinematics.h"
+#include "dnurbs/dynamics/superquadric/superquadric_quadrature.h"
+#include "dnurbs/surface/signed_power.h"
 
 namespace dnurbs {
 

@@ -52,10 +52,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "dynamics/core/model.h"
-#include "dynamics/superquadric/deformable_superquadric_settings.h"
-#include "surface/deformable_superquadric_shape.h"
-#include "surface/parametric_fe_mesh.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_settings.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
+#include "dnurbs/surface/parametric_fe_mesh.h"
 
 namespace dnurbs {
 

@@ -1,9 +1,9 @@
-#include "dynamics/superquadric/deformable_superquadric_settings.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_settings.h"
 
 #include <cmath>
 #include <initializer_list>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "surface/deformable_superquadric_shape.h"
-#include "surface/parametric_fe_mesh.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
+#include "dnurbs/surface/parametric_fe_mesh.h"
 
 namespace dnurbs {
 

@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "core/rotation.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/core/rotation.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 
 namespace dnurbs {
 namespace superquadric_detail {

@@ -1,10 +1,10 @@
-#include "dynamics/superquadric/superquadric_quadrature.h"
+#include "dnurbs/dynamics/superquadric/superquadric_quadrature.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 namespace {

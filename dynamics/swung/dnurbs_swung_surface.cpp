@@ -1,13 +1,13 @@
-#include "dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "dynamics/swung/swung_element_assembly.h"
-#include "dynamics/swung/swung_gauge.h"
-#include "dynamics/swung/swung_parametric_surface.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/swung/swung_element_assembly.h"
+#include "dnurbs/dynamics/swung/swung_gauge.h"
+#include "dnurbs/dynamics/swung/swung_parametric_surface.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 namespace {

@@ -19,12 +19,12 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/swung/swung_quadrature.h"
-#include "dynamics/swung/swung_separable_forms.h"
-#include "nurbs/swung_jacobian.h"
-#include "nurbs/swung_surface.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/swung/swung_quadrature.h"
+#include "dnurbs/dynamics/swung/swung_separable_forms.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 namespace dnurbs {
 

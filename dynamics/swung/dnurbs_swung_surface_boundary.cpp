@@ -7,11 +7,11 @@
 #include <numeric>
 #include <vector>
 
-#include "core/error.h"
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "dynamics/swung/swung_boundary_conditions.h"
-#include "dynamics/swung/swung_gauge.h"
-#include "dynamics/swung/swung_parametric_surface.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/dynamics/swung/swung_boundary_conditions.h"
+#include "dnurbs/dynamics/swung/swung_gauge.h"
+#include "dnurbs/dynamics/swung/swung_parametric_surface.h"
 
 namespace dnurbs {
 

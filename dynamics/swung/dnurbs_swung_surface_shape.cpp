@@ -5,9 +5,9 @@
 
 #include <array>
 
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "dynamics/swung/swung_parametric_surface.h"
-#include "dynamics/swung/swung_tangent_kinematics.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/dynamics/swung/swung_parametric_surface.h"
+#include "dnurbs/dynamics/swung/swung_tangent_kinematics.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "dynamics/swung/swung_boundary_conditions.h"
+#include "dnurbs/dynamics/swung/swung_boundary_conditions.h"
 
 #include <algorithm>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

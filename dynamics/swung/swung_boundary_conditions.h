@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "nurbs/swung_jacobian.h"
-#include "surface/parametric_surface.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
+#include "dnurbs/surface/parametric_surface.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/swung/swung_element_assembly.h"
+#include "dnurbs/dynamics/swung/swung_element_assembly.h"
 
 #include <algorithm>
 #include <cmath>

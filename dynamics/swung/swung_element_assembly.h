@@ -13,8 +13,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/swung/swung_quadrature.h"
-#include "nurbs/swung_jacobian.h"
+#include "dnurbs/dynamics/swung/swung_quadrature.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
 
 namespace dnurbs {
 

@@ -1,8 +1,8 @@
-#include "dynamics/swung/swung_gauge.h"
+#include "dnurbs/dynamics/swung/swung_gauge.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/swung_jacobian.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
 
 namespace dnurbs {
 

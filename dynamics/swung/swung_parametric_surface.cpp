@@ -1,9 +1,9 @@
-#include "dynamics/swung/swung_parametric_surface.h"
+#include "dnurbs/dynamics/swung/swung_parametric_surface.h"
 
 #include <cmath>
 
-#include "core/error.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 namespace dnurbs {
 namespace {

@@ -5,8 +5,8 @@
 // (surface/parametric_surface.h). The swung D-NURBS model gives these through the Model
 // contract (DNurbsSwungSurface::parameter_domain, normal_orientation, parametric_surface).
 
-#include "nurbs/swung_surface.h"
-#include "surface/parametric_surface.h"
+#include "dnurbs/nurbs/swung_surface.h"
+#include "dnurbs/surface/parametric_surface.h"
 
 namespace dnurbs {
 

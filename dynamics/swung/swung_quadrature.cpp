@@ -1,8 +1,8 @@
-#include "dynamics/swung/swung_quadrature.h"
+#include "dnurbs/dynamics/swung/swung_quadrature.h"
 
 #include <algorithm>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -12,10 +12,10 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/quadrature_assembly.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "nurbs/swung_jacobian.h"
-#include "nurbs/swung_surface.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/swung/swung_separable_forms.h"
+#include "dnurbs/dynamics/swung/swung_separable_forms.h"
 
 namespace dnurbs {
 namespace {

@@ -1,10 +1,10 @@
-#include "dynamics/swung/swung_tangent_kinematics.h"
+#include "dnurbs/dynamics/swung/swung_tangent_kinematics.h"
 
 #include <algorithm>
 #include <numeric>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

@@ -11,8 +11,8 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/model.h"
-#include "nurbs/swung_jacobian.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
 
 namespace dnurbs {
 

@@ -1,13 +1,13 @@
-#include "dynamics/triangular/triangular_boundary_conditions.h"
+#include "dnurbs/dynamics/triangular/triangular_boundary_conditions.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/QR>
 
-#include "core/error.h"
-#include "nurbs/gauss_legendre.h"
-#include "nurbs/triangular_polynomial_cells.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
+#include "dnurbs/nurbs/triangular_polynomial_cells.h"
 
 namespace dnurbs {
 

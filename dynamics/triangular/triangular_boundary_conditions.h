@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "nurbs/triangular_bspline_basis.h"
+#include "dnurbs/nurbs/triangular_bspline_basis.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
-#include "dynamics/triangular/triangular_free_weight_terms.h"
-#include "dynamics/triangular/triangular_local_sculpting.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/triangular/triangular_free_weight_terms.h"
+#include "dnurbs/dynamics/triangular/triangular_local_sculpting.h"
 
 namespace dnurbs {
 

@@ -31,12 +31,12 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/core/quadrature_assembly.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/dnurbs/rational_control_net_model.h"
-#include "dynamics/triangular/triangular_quadrature.h"
-#include "nurbs/jacobian.h"
-#include "nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/dnurbs/rational_control_net_model.h"
+#include "dnurbs/dynamics/triangular/triangular_quadrature.h"
+#include "dnurbs/nurbs/jacobian.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
 
 namespace dnurbs {
 

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
-#include "dynamics/triangular/triangular_tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/dynamics/triangular/triangular_tessellation.h"
 
 namespace dnurbs {
 

@@ -1,4 +1,4 @@
-#include "dynamics/triangular/triangular_free_weight_terms.h"
+#include "dnurbs/dynamics/triangular/triangular_free_weight_terms.h"
 
 #include <algorithm>
 

@@ -9,9 +9,9 @@
 #include <array>
 #include <vector>
 
-#include "dynamics/core/model.h"
-#include "dynamics/core/quadrature_assembly.h"
-#include "nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
 
 namespace dnurbs {
 

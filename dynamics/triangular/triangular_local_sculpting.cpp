@@ -1,10 +1,10 @@
-#include "dynamics/triangular/triangular_local_sculpting.h"
+#include "dnurbs/dynamics/triangular/triangular_local_sculpting.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "dynamics/triangular/triangular_boundary_conditions.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/triangular/triangular_boundary_conditions.h"
 
 namespace dnurbs {
 

@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include "dynamics/core/sculpted_region.h"
-#include "nurbs/triangular_bspline_basis.h"
+#include "dnurbs/dynamics/core/sculpted_region.h"
+#include "dnurbs/nurbs/triangular_bspline_basis.h"
 
 namespace dnurbs {
 

@@ -1,10 +1,10 @@
-#include "dynamics/triangular/triangular_quadrature.h"
+#include "dnurbs/dynamics/triangular/triangular_quadrature.h"
 
 #include <algorithm>
 
-#include "core/error.h"
-#include "nurbs/simplex_spline.h"
-#include "nurbs/triangular_polynomial_cells.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/simplex_spline.h"
+#include "dnurbs/nurbs/triangular_polynomial_cells.h"
 
 namespace dnurbs {
 

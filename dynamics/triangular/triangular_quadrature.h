@@ -34,9 +34,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/quadrature_assembly.h"
-#include "nurbs/dunavant_rules.h"
-#include "nurbs/triangular_bspline_basis.h"
+#include "dnurbs/dynamics/core/quadrature_assembly.h"
+#include "dnurbs/nurbs/dunavant_rules.h"
+#include "dnurbs/nurbs/triangular_bspline_basis.h"
 
 namespace dnurbs {
 

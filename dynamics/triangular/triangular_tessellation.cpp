@@ -1,4 +1,4 @@
-#include "dynamics/triangular/triangular_tessellation.h"
+#include "dnurbs/dynamics/triangular/triangular_tessellation.h"
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 

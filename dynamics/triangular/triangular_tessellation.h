@@ -11,9 +11,9 @@
 
 #include <string>
 
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
-#include "nurbs/triangular_nurbs_surface.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
 

@@ -6,14 +6,14 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/nurbs/knot_vector.h"
 #include "examples/example_arguments.h"
-#include "io/mesh_export.h"
-#include "nurbs/knot_vector.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;

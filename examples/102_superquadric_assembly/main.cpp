@@ -10,13 +10,13 @@
 #include <numbers>
 #include <vector>
 
-#include "constraints/constraint_solver.h"
-#include "constraints/point_constraints.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/io/mesh_export.h"
 #include "examples/example_arguments.h"
-#include "io/mesh_export.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;

@@ -8,14 +8,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/core/obstacles.h"
-#include "dynamics/core/system.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/obstacles.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/surface/grid.h"
 #include "examples/example_arguments.h"
-#include "io/mesh_export.h"
-#include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;

@@ -8,13 +8,13 @@
 #include <filesystem>
 #include <numbers>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/grid/pde_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/grid/pde_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/surface/grid.h"
 #include "examples/example_arguments.h"
-#include "io/mesh_export.h"
-#include "surface/grid.h"
 
 int main(int argc, char** argv) {
   using namespace dnurbs;

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <numbers>
 
-#include "dynamics/core/system.h"
-#include "dynamics/grid/snake.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/grid/snake.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 #include "examples/example_arguments.h"
 
 int main(int argc, char** argv) {

@@ -1,6 +1,6 @@
-#include "io/models/dnurbs_scene.h"
+#include "dnurbs/io/models/dnurbs_scene.h"
 
-#include "io/scene_fit.h"
+#include "dnurbs/io/scene_fit.h"
 
 namespace dnurbs {
 

@@ -14,11 +14,11 @@
 #include <utility>
 #include <vector>
 
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "io/models/dnurbs_scene_keys.h"
-#include "io/scene_model_keys.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/io/models/dnurbs_scene_keys.h"
+#include "dnurbs/io/scene_model_keys.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

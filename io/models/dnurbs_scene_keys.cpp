@@ -1,12 +1,12 @@
-#include "io/models/dnurbs_scene_keys.h"
+#include "dnurbs/io/models/dnurbs_scene_keys.h"
 
 #include <utility>
 
 #include <variant>
 
-#include "io/json_messages.h"
-#include "io/scene_model_keys.h"
-#include "io/shape_recipe.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/scene_model_keys.h"
+#include "dnurbs/io/shape_recipe.h"
 
 namespace dnurbs {
 

@@ -9,13 +9,13 @@
 #include <string>
 #include <utility>
 
-#include "dynamics/dnurbs/dnurbs_model.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "io/scene_model_keys.h"
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
-#include "io/scene_writer.h"
-#include "io/shape_file.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_model.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/io/scene_model_keys.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
+#include "dnurbs/io/scene_writer.h"
+#include "dnurbs/io/shape_file.h"
 
 namespace dnurbs {
 

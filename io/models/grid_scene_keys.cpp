@@ -1,6 +1,6 @@
-#include "io/models/grid_scene_keys.h"
+#include "dnurbs/io/models/grid_scene_keys.h"
 
-#include "io/json_messages.h"
+#include "dnurbs/io/json_messages.h"
 
 namespace dnurbs {
 

@@ -6,9 +6,9 @@
 
 #include <Eigen/Core>
 
-#include "io/scene_reader.h"
-#include "io/scene_writer.h"
-#include "surface/grid.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_writer.h"
+#include "dnurbs/surface/grid.h"
 
 namespace dnurbs {
 

@@ -1,7 +1,7 @@
-#include "io/models/snake_scene.h"
+#include "dnurbs/io/models/snake_scene.h"
 
-#include "io/json_messages.h"
-#include "io/scene_model_keys.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/scene_model_keys.h"
 
 namespace dnurbs {
 

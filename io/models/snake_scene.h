@@ -8,9 +8,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/grid/snake.h"
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/grid/snake.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

@@ -1,12 +1,12 @@
-#include "io/models/superquadric_scene.h"
+#include "dnurbs/io/models/superquadric_scene.h"
 
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-#include "design/superquadric_fitting.h"
-#include "io/json_messages.h"
-#include "io/scene_model_keys.h"
+#include "dnurbs/design/superquadric_fitting.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/scene_model_keys.h"
 
 namespace dnurbs {
 namespace {

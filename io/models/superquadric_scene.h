@@ -9,9 +9,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

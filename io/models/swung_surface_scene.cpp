@@ -1,4 +1,4 @@
-#include "io/models/swung_surface_scene.h"
+#include "dnurbs/io/models/swung_surface_scene.h"
 
 #include <array>
 #include <cmath>
@@ -6,13 +6,13 @@
 #include <utility>
 #include <vector>
 
-#include "io/json_messages.h"
-#include "io/models/dnurbs_scene_keys.h"
-#include "io/scene_model_keys.h"
-#include "io/scene_registry.h"
-#include "io/shape_file.h"
-#include "nurbs/swung_refinement.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/models/dnurbs_scene_keys.h"
+#include "dnurbs/io/scene_model_keys.h"
+#include "dnurbs/io/scene_registry.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/nurbs/swung_refinement.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -12,9 +12,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

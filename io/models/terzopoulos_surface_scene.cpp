@@ -1,9 +1,9 @@
-#include "io/models/terzopoulos_surface_scene.h"
+#include "dnurbs/io/models/terzopoulos_surface_scene.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "io/scene_model_keys.h"
+#include "dnurbs/io/scene_model_keys.h"
 
 namespace dnurbs {
 

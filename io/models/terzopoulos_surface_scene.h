@@ -5,10 +5,10 @@
 #include <memory>
 #include <string>
 
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "io/models/grid_scene_keys.h"
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/io/models/grid_scene_keys.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

@@ -1,13 +1,13 @@
-#include "io/models/triangular_dnurbs_surface_scene.h"
+#include "dnurbs/io/models/triangular_dnurbs_surface_scene.h"
 
 #include <utility>
 
-#include "io/json_messages.h"
-#include "io/models/dnurbs_scene_keys.h"
-#include "io/scene_model_keys.h"
-#include "io/triangular_shape_file.h"
-#include "nurbs/triangular_knot_clouds.h"
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/models/dnurbs_scene_keys.h"
+#include "dnurbs/io/scene_model_keys.h"
+#include "dnurbs/io/triangular_shape_file.h"
+#include "dnurbs/nurbs/triangular_knot_clouds.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 namespace dnurbs {
 

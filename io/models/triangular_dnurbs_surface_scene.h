@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
-#include "io/scene_reader.h"
-#include "io/scene_spec.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/io/scene_reader.h"
+#include "dnurbs/io/scene_spec.h"
 
 namespace dnurbs {
 

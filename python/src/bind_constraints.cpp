@@ -5,9 +5,9 @@
 
 #include <pybind11/stl.h>
 
-#include "constraints/constraint_solver.h"
-#include "constraints/point_constraints.h"
-#include "constraints/surface_constraints.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/constraints/surface_constraints.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"

@@ -4,9 +4,9 @@
 
 #include <pybind11/stl.h>
 
-#include "design/dnurbs_fitting.h"
-#include "design/energy_minimization.h"
-#include "io/scene_fit.h"
+#include "dnurbs/design/dnurbs_fitting.h"
+#include "dnurbs/design/energy_minimization.h"
+#include "dnurbs/io/scene_fit.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

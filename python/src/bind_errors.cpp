@@ -2,8 +2,8 @@
 
 #include <pybind11/pybind11.h>
 
-#include "core/error.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/scene_simulation.h"
 #include "python/src/bindings.h"
 
 namespace dnurbs::python {

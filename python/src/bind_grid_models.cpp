@@ -6,9 +6,9 @@
 
 #include <pybind11/stl.h>
 
-#include "dynamics/grid/pde_surface.h"
-#include "dynamics/grid/snake.h"
-#include "dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/grid/pde_surface.h"
+#include "dnurbs/dynamics/grid/snake.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"

@@ -4,9 +4,9 @@
 
 #include <pybind11/stl.h>
 
-#include "constraints/target_trajectory.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/constraints/target_trajectory.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

@@ -4,8 +4,8 @@
 
 #include <pybind11/stl.h>
 
-#include "nurbs/knot_insertion.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/knot_vector.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

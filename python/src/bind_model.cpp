@@ -7,12 +7,12 @@
 
 #include <pybind11/stl.h>
 
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/core/sculpted_region.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "io/scene.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/core/sculpted_region.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"

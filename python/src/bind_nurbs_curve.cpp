@@ -4,11 +4,11 @@
 
 #include <pybind11/stl.h>
 
-#include "nurbs/closest_point.h"
-#include "nurbs/degree_elevation.h"
-#include "nurbs/knot_insertion.h"
-#include "nurbs/knot_removal.h"
-#include "nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/closest_point.h"
+#include "dnurbs/nurbs/degree_elevation.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/knot_removal.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
 #include "python/src/bindings.h"
 #include "python/src/control_net_properties.h"
 #include "python/src/numpy_arrays.h"

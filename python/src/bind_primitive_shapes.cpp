@@ -1,6 +1,6 @@
 // The exact rational shapes of nurbs/primitive_shapes.h (Piegl & Tiller, The NURBS Book, ch. 7-8).
 
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

@@ -4,8 +4,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "io/checkpoint.h"
-#include "io/scene.h"
+#include "dnurbs/io/checkpoint.h"
+#include "dnurbs/io/scene.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

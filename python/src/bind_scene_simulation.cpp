@@ -6,9 +6,9 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "io/checkpoint.h"
-#include "io/scene_runner.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/io/checkpoint.h"
+#include "dnurbs/io/scene_runner.h"
+#include "dnurbs/io/scene_simulation.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

@@ -5,13 +5,13 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "io/cad_file.h"
-#include "io/checkpoint.h"
-#include "io/json_messages.h"
-#include "io/obj_freeform.h"
-#include "io/shape_file.h"
-#include "io/shape_recipe.h"
-#include "io/triangular_shape_file.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/io/checkpoint.h"
+#include "dnurbs/io/json_messages.h"
+#include "dnurbs/io/obj_freeform.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/io/shape_recipe.h"
+#include "dnurbs/io/triangular_shape_file.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

@@ -7,7 +7,7 @@
 
 #include <pybind11/stl.h>
 
-#include "nurbs/shape_generators.h"
+#include "dnurbs/nurbs/shape_generators.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 

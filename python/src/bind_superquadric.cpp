@@ -5,7 +5,7 @@
 
 #include <pybind11/stl.h>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"

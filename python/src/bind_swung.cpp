@@ -5,9 +5,9 @@
 
 #include <pybind11/stl.h>
 
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "nurbs/swung_refinement.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/nurbs/swung_refinement.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
 #include "python/src/surface_arrays.h"

@@ -6,10 +6,10 @@
 
 #include <pybind11/stl.h>
 
-#include "constraints/target_trajectory.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/spring.h"
-#include "dynamics/core/system.h"
+#include "dnurbs/constraints/target_trajectory.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/spring.h"
+#include "dnurbs/dynamics/core/system.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 #include "python/src/sparse_matrices.h"

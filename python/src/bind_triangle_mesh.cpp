@@ -6,12 +6,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "core/error.h"
-#include "io/mesh_export.h"
-#include "io/mesh_import.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/surface/triangle_mesh.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
-#include "surface/triangle_mesh.h"
 
 namespace dnurbs::python {
 

@@ -9,9 +9,9 @@
 
 #include <pybind11/stl.h>
 
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
-#include "nurbs/triangular_nurbs_surface.h"
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 #include "python/src/bindings.h"
 #include "python/src/control_net_properties.h"
 #include "python/src/model_arguments.h"

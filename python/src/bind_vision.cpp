@@ -11,14 +11,14 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
-#include "dynamics/grid/snake.h"
+#include "dnurbs/dynamics/grid/snake.h"
+#include "dnurbs/vision/contour.h"
+#include "dnurbs/vision/gaussian_filter.h"
+#include "dnurbs/vision/t_snake.h"
+#include "dnurbs/vision/t_surface.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"
-#include "vision/contour.h"
-#include "vision/gaussian_filter.h"
-#include "vision/t_snake.h"
-#include "vision/t_surface.h"
 
 namespace dnurbs::python {
 

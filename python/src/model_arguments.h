@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "dynamics/core/model.h"
+#include "dnurbs/dynamics/core/model.h"
 #include "python/src/numpy_arrays.h"
 
 namespace dnurbs::python {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs::python {
 

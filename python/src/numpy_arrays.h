@@ -19,7 +19,7 @@
 #include <pybind11/pybind11.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs::python {
 

@@ -4,7 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include "core/sparse_matrix.h"
+#include "dnurbs/core/sparse_matrix.h"
 
 namespace dnurbs::python {
 

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 #include "python/src/numpy_arrays.h"
 
 namespace dnurbs::python {

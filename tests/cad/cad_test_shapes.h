@@ -16,7 +16,7 @@
 #include <variant>
 #include <vector>
 
-#include "nurbs/shape.h"
+#include "dnurbs/nurbs/shape.h"
 #include "tests/nurbs/random_shapes.h"
 
 namespace dnurbs::testing {

@@ -1,7 +1,7 @@
 // IGES exchange: random shapes of every kind round trip exactly as entities 126 and 128; a file
 // written by Open CASCADE's own IGES writer (faces as entities 510 and 144) reads as the shapes
 // it holds; trimmed surfaces and broken files are refused, naming the entity or the file.
-#include "cad/iges_file.h"
+#include "dnurbs/cad/iges_file.h"
 
 #include <cmath>
 #include <random>
@@ -24,9 +24,9 @@
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
 
-#include "cad/exchange_reader.h"
-#include "cad/occt_nurbs.h"
-#include "core/error.h"
+#include "dnurbs/cad/exchange_reader.h"
+#include "dnurbs/cad/occt_nurbs.h"
+#include "dnurbs/core/error.h"
 #include "tests/cad/cad_test_shapes.h"
 #include "tests/common/error_message.h"
 

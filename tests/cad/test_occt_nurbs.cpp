@@ -1,6 +1,6 @@
 // Exact conversion to and from Open CASCADE's B-spline geometry: both libraries evaluate the
 // same points, and the conversion back gives the same knots, weights and control points.
-#include "cad/occt_nurbs.h"
+#include "dnurbs/cad/occt_nurbs.h"
 
 #include <random>
 
@@ -11,7 +11,7 @@
 #include <Geom_BezierCurve.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/cad/cad_test_shapes.h"
 #include "tests/common/error_message.h"
 

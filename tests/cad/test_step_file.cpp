@@ -1,7 +1,7 @@
 // STEP exchange: random shapes of every kind round trip exactly; files written by Open CASCADE
 // itself (its own writer, its own 12-digit reals, analytic faces) read as the shapes they hold;
 // trimmed faces and broken files are refused with the entity or the file named.
-#include "cad/step_file.h"
+#include "dnurbs/cad/step_file.h"
 
 #include <cmath>
 #include <numbers>
@@ -29,9 +29,9 @@
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
 
-#include "cad/exchange_reader.h"
-#include "cad/occt_nurbs.h"
-#include "core/error.h"
+#include "dnurbs/cad/exchange_reader.h"
+#include "dnurbs/cad/occt_nurbs.h"
+#include "dnurbs/core/error.h"
 #include "tests/cad/cad_test_shapes.h"
 #include "tests/common/error_message.h"
 

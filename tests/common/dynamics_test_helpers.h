@@ -4,10 +4,10 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "nurbs/knot_vector.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs::test {
 

@@ -7,11 +7,11 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "dynamics/integrators/semi_implicit_step.h"
-#include "surface/grid.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/surface/grid.h"
 
 namespace dnurbs::test {
 

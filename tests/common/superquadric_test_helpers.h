@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 
 namespace dnurbs::test {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <utility>
 
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs::testing {
 

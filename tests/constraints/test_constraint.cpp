@@ -1,16 +1,16 @@
 // Every constraint's C_q, Cdot and sigma against finite differences of C along the coordinates
 // and along the motion q(t) = q + t qd (coordinates are a vector space for D-NURBS models).
 
-#include "constraints/constraint.h"
+#include "dnurbs/constraints/constraint.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "constraints/constraint_solver.h"
-#include "constraints/point_constraints.h"
-#include "constraints/surface_constraints.h"
-#include "core/error.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/constraints/surface_constraints.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/constraint_test_scenes.h"
 
 namespace dnurbs {

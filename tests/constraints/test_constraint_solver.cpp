@@ -1,7 +1,7 @@
 // Baumgarte stabilization (Terzopoulos 2003, eq. 1.40) inside the integrators, and the redundant
 // and conflicting cases.
 
-#include "constraints/constraint_solver.h"
+#include "dnurbs/constraints/constraint_solver.h"
 
 #include <cmath>
 #include <iostream>
@@ -11,14 +11,14 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "constraints/point_constraints.h"
-#include "constraints/surface_constraints.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/constraints/surface_constraints.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/nurbs/knot_vector.h"
 #include "tests/common/constraint_test_scenes.h"
 
 namespace dnurbs {

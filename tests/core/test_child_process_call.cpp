@@ -1,6 +1,6 @@
 // call_in_child_process: the child's bytes come back intact, its Error keeps its message, and a
 // crash or an early exit in the child is an Error of the caller, not the caller's end.
-#include "core/child_process_call.h"
+#include "dnurbs/core/child_process_call.h"
 
 #include <csignal>
 #include <cstdlib>
@@ -10,7 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

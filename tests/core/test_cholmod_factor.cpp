@@ -1,10 +1,10 @@
-#include "core/cholmod_factor.h"
+#include "dnurbs/core/cholmod_factor.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/core/core_test_helpers.h"
 
 namespace dnurbs {

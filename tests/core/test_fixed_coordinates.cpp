@@ -1,12 +1,12 @@
 // Elimination of fixed coordinates: the free index maps and the reduced matrix against a dense
 // selection of the free rows and columns.
 
-#include "core/fixed_coordinates.h"
+#include "dnurbs/core/fixed_coordinates.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

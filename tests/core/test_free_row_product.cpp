@@ -2,7 +2,7 @@
 // merged pattern equals three separate sparse products restricted to the free rows, leaves the
 // fixed rows untouched, takes rows (not columns) of an unsymmetric matrix, and rejects bad input.
 
-#include "core/free_row_product.h"
+#include "dnurbs/core/free_row_product.h"
 
 #include <random>
 #include <vector>
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

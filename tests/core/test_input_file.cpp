@@ -1,7 +1,7 @@
 // Input files are read within bounds: regular files only, checked before they are opened (a
 // FIFO would block, /dev/zero never ends), and of a bounded size.
 
-#include "core/input_file.h"
+#include "dnurbs/core/input_file.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

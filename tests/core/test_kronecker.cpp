@@ -2,12 +2,12 @@
 // of a list of fixed coordinates, and the quadratic form x^T (S (x) I_b) x against the expanded
 // matrix's.
 
-#include "core/kronecker.h"
+#include "dnurbs/core/kronecker.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

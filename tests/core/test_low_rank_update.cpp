@@ -1,4 +1,4 @@
-#include "core/low_rank_update.h"
+#include "dnurbs/core/low_rank_update.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/core/core_test_helpers.h"
 

@@ -1,7 +1,7 @@
 // Limits from memory: estimates checked against the memory available, which
 // DNURBS_MEMORY_LIMIT can lower.
 
-#include "core/memory_budget.h"
+#include "dnurbs/core/memory_budget.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -11,7 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

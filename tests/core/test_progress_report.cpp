@@ -1,7 +1,7 @@
 // ProgressReport: the rate is measured from the first report, the time left follows from it,
 // a log gets a line every tenth of the total, a terminal a bar redrawn in place, and without a
 // total a line at most once a second.
-#include "core/progress_report.h"
+#include "dnurbs/core/progress_report.h"
 
 #include <limits>
 #include <sstream>

@@ -1,14 +1,14 @@
 // Rotations: the cross-product matrix, the exponential map and the Cayley map against Eigen's
 // angle-axis rotations and their defining identities.
 
-#include "core/rotation.h"
+#include "dnurbs/core/rotation.h"
 
 #include <cmath>
 #include <numbers>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

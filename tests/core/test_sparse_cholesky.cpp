@@ -1,4 +1,4 @@
-#include "core/sparse_cholesky.h"
+#include "dnurbs/core/sparse_cholesky.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <new>
 #include <string>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/core/core_test_helpers.h"
 

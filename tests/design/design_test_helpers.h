@@ -3,10 +3,10 @@
 
 #include <Eigen/Core>
 
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "nurbs/knot_vector.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs::test {
 

@@ -1,4 +1,4 @@
-#include "design/dnurbs_fitting.h"
+#include "dnurbs/design/dnurbs_fitting.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "design/point_set.h"
-#include "io/mesh_import.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/design/point_set.h"
+#include "dnurbs/io/mesh_import.h"
 #include "tests/design/design_test_helpers.h"
 
 namespace dnurbs {

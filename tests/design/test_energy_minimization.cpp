@@ -1,4 +1,4 @@
-#include "design/energy_minimization.h"
+#include "dnurbs/design/energy_minimization.h"
 
 #include <algorithm>
 #include <iostream>
@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "constraints/point_constraints.h"
-#include "core/error.h"
-#include "dynamics/integrators/static_equilibrium.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/design/design_test_helpers.h"
 
 namespace dnurbs {

@@ -1,4 +1,4 @@
-#include "design/superquadric_fitting.h"
+#include "dnurbs/design/superquadric_fitting.h"
 
 #include <cmath>
 #include <filesystem>
@@ -11,9 +11,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "design/point_set.h"
-#include "io/mesh_import.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/design/point_set.h"
+#include "dnurbs/io/mesh_import.h"
 
 namespace dnurbs {
 namespace {

@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "dynamics/core/system.h"
-#include "nurbs/knot_vector.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/nurbs/knot_vector.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs::hardcase {
 

@@ -7,12 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/nurbs/knot_vector.h"
 #include "hardcase_helpers.h"
-#include "nurbs/knot_vector.h"
 
 namespace dnurbs {
 namespace {

@@ -21,13 +21,13 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/spring.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/spring.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 #include "hardcase_helpers.h"
 
 namespace dnurbs {

@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/surface/grid.h"
 #include "hardcase_helpers.h"
-#include "surface/grid.h"
 
 namespace dnurbs {
 namespace {

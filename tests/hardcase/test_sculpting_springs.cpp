@@ -13,10 +13,10 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 #include "hardcase_helpers.h"
 
 namespace dnurbs {

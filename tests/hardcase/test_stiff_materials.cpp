@@ -15,14 +15,14 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseLU>
 
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/surface/grid.h"
 #include "hardcase_helpers.h"
-#include "surface/grid.h"
 
 namespace dnurbs {
 namespace {

@@ -8,10 +8,10 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/rigid_body_integrator.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/rigid_body_integrator.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "hardcase_helpers.h"
 
 namespace dnurbs {

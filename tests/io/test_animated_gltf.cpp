@@ -2,7 +2,7 @@
 // morph target k is frame k + 1, Y-up, to float precision), the weights pick one target per
 // frame at the frames' times, a run with output.animation writes it, and frames that do not
 // fit are refused naming the frame.
-#include "io/animated_gltf.h"
+#include "dnurbs/io/animated_gltf.h"
 
 #include <cmath>
 #include <cstdint>
@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/scene.h"
-#include "io/scene_runner.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_runner.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

@@ -1,7 +1,7 @@
 // Atomic writes leave no temporary behind, and the temporaries of a killed run are removed by the
 // next run in the same folder (io/atomic_write.h).
 
-#include "io/atomic_write.h"
+#include "dnurbs/io/atomic_write.h"
 
 #include <unistd.h>
 
@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/child_process.h"
 
 namespace dnurbs {

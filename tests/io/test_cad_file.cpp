@@ -1,7 +1,7 @@
 // CAD files through the io layer: formats by extension, exact round trips of shapes through
 // STEP and IGES files, shape files and scenes that name a CAD file, and the messages for
 // everything that cannot be read or written.
-#include "io/cad_file.h"
+#include "dnurbs/io/cad_file.h"
 
 #include <unistd.h>
 
@@ -11,12 +11,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "io/models/dnurbs_scene.h"
-#include "io/scene.h"
-#include "io/scene_runner.h"
-#include "io/shape_file.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/models/dnurbs_scene.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_runner.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

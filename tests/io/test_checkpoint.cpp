@@ -2,7 +2,7 @@
 // resumed from its checkpoint ends in the same state as an uninterrupted run, the CSV log
 // continues seamlessly, and a diverging run stops at its last good state.
 
-#include "io/checkpoint.h"
+#include "dnurbs/io/checkpoint.h"
 
 #include <unistd.h>
 
@@ -17,12 +17,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "io/csv_log.h"
-#include "io/scene.h"
-#include "io/scene_forces.h"
-#include "io/scene_runner.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/csv_log.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_forces.h"
+#include "dnurbs/io/scene_runner.h"
+#include "dnurbs/io/scene_simulation.h"
 
 namespace dnurbs {
 namespace {

@@ -1,7 +1,7 @@
 // Grid surfaces from imported meshes: a grid mesh written to a file comes back as the same grid
 // and node positions; meshes that are not a regular (u, v) lattice are rejected by name.
 
-#include "io/grid_from_mesh.h"
+#include "dnurbs/io/grid_from_mesh.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,8 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "io/mesh_export.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/mesh_export.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/mesh_export.h"
+#include "dnurbs/io/mesh_export.h"
 
 #include <unistd.h>
 
@@ -15,12 +15,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/gltf_extensions.h"
-#include "io/mesh_import.h"
-#include "io/mesh_up_axis.h"
-#include "nurbs/primitive_shapes.h"
-#include "surface/tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/gltf_extensions.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/mesh_up_axis.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/surface/tessellation.h"
 #include "tests/common/child_process.h"
 
 namespace dnurbs {

@@ -1,6 +1,6 @@
 // import_meshes: a file's geometry comes in as written, and what a consumer cannot use (a
 // non-finite vertex, a face that indexes past the vertices) is refused naming the file.
-#include "io/mesh_import.h"
+#include "dnurbs/io/mesh_import.h"
 
 #include <filesystem>
 #include <fstream>
@@ -9,7 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

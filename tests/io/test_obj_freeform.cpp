@@ -2,7 +2,7 @@
 // shapes (open, clamped or not, periodic, rational or not), files written by hand as another
 // tool would write them, mixed mesh and free-form files, and every malformed input refused
 // with its line and value.
-#include "io/obj_freeform.h"
+#include "dnurbs/io/obj_freeform.h"
 
 #include <unistd.h>
 
@@ -16,8 +16,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "io/shape_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/shape_file.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/random_shapes.h"
 

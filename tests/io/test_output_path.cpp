@@ -1,10 +1,10 @@
 // Names from scenes and clients never leave the output folder.
 
-#include "io/output_path.h"
+#include "dnurbs/io/output_path.h"
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/preview.h"
+#include "dnurbs/io/preview.h"
 
 #include <unistd.h>
 
@@ -12,10 +12,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "io/mesh_export.h"
-#include "nurbs/primitive_shapes.h"
-#include "surface/tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/mesh_export.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/surface/tessellation.h"
 
 namespace dnurbs {
 namespace {

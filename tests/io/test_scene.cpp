@@ -1,7 +1,7 @@
 // Scene files: every key round-trips, model references resolve, schedules interpolate, every
 // model type builds and steps, and every malformed scene of the corpus names its JSON path.
 
-#include "io/scene.h"
+#include "dnurbs/io/scene.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -16,12 +16,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/models/dnurbs_scene.h"
-#include "io/scene_constraints.h"
-#include "io/scene_fit.h"
-#include "io/scene_forces.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/models/dnurbs_scene.h"
+#include "dnurbs/io/scene_constraints.h"
+#include "dnurbs/io/scene_fit.h"
+#include "dnurbs/io/scene_forces.h"
+#include "dnurbs/io/scene_simulation.h"
 
 namespace dnurbs {
 namespace {

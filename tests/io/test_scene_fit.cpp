@@ -12,13 +12,13 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "io/models/dnurbs_scene.h"
-#include "io/models/superquadric_scene.h"
-#include "io/scene.h"
-#include "io/scene_fit.h"
-#include "io/scene_simulation.h"
-#include "io/shape_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/models/dnurbs_scene.h"
+#include "dnurbs/io/models/superquadric_scene.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_fit.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/io/shape_file.h"
 #include "tests/common/surface_comparison.h"
 
 namespace dnurbs {

@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "io/scene.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
 
 namespace dnurbs {
 namespace {

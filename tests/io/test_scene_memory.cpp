@@ -8,9 +8,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "io/scene.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
 
 namespace dnurbs {
 namespace {

@@ -2,7 +2,7 @@
 // the library (the example of docs/adding-a-model.md, a point mass) parses, writes back, builds
 // and runs through the same paths as the built-in ones.
 
-#include "io/scene_registry.h"
+#include "dnurbs/io/scene_registry.h"
 
 #include <memory>
 #include <string>
@@ -10,11 +10,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/model_tessellation.h"
-#include "io/scene.h"
-#include "io/scene_model_keys.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_model_keys.h"
+#include "dnurbs/io/scene_simulation.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

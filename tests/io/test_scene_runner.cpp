@@ -1,7 +1,7 @@
 // Running a scene writes only into its output folder, whatever its model names are, and removes
 // what a killed run left there.
 
-#include "io/scene_runner.h"
+#include "dnurbs/io/scene_runner.h"
 
 #include <filesystem>
 #include <fstream>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/scene.h"
+#include "dnurbs/io/scene.h"
 #include "tests/common/child_process.h"
 
 namespace dnurbs {

@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/scene.h"
-#include "io/scene_simulation.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
 
 namespace dnurbs {
 namespace {

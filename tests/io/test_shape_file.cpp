@@ -1,4 +1,4 @@
-#include "io/shape_file.h"
+#include "dnurbs/io/shape_file.h"
 
 #include <unistd.h>
 
@@ -10,8 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

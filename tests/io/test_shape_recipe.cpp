@@ -1,7 +1,7 @@
 // Shape recipes: every kind builds what its generator builds, scenes take them as a model's
 // "make" key (a made sheet runs exactly like the same sheet typed out), and every bad recipe is
 // refused with the JSON path of the bad value.
-#include "io/shape_recipe.h"
+#include "dnurbs/io/shape_recipe.h"
 
 #include <filesystem>
 #include <numbers>
@@ -11,11 +11,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "io/shape_file.h"
-#include "nurbs/primitive_shapes.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/shape_generators.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

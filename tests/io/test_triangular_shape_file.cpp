@@ -1,7 +1,7 @@
 // Shape files of triangular NURBS surfaces: exact round trips, the standard knot clouds when
 // they are left out, and messages that name the JSON path of every malformed value.
 
-#include "io/triangular_shape_file.h"
+#include "dnurbs/io/triangular_shape_file.h"
 
 #include <filesystem>
 #include <fstream>
@@ -13,8 +13,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -12,9 +12,9 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-#include "nurbs/basis_functions.h"
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/basis_functions.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs::testing {
 

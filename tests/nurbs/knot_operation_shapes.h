@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/nurbs_curve.h"
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 namespace dnurbs::testing {
 

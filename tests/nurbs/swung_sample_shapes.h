@@ -6,7 +6,7 @@
 #include <numbers>
 #include <random>
 
-#include "nurbs/swung_surface.h"
+#include "dnurbs/nurbs/swung_surface.h"
 #include "sample_shapes.h"
 
 namespace dnurbs::testing {

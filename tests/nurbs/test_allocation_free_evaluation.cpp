@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/jacobian.h"
-#include "nurbs/span_cached_surface_evaluator.h"
+#include "dnurbs/nurbs/jacobian.h"
+#include "dnurbs/nurbs/span_cached_surface_evaluator.h"
 #include "sample_shapes.h"
 #include "tests/common/allocation_counter.h"
 

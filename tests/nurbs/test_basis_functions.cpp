@@ -1,4 +1,4 @@
-#include "nurbs/basis_functions.h"
+#include "dnurbs/nurbs/basis_functions.h"
 
 #include <random>
 

@@ -1,4 +1,4 @@
-#include "nurbs/bernstein.h"
+#include "dnurbs/nurbs/bernstein.h"
 
 #include <cmath>
 #include <random>

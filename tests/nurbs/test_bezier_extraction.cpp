@@ -1,4 +1,4 @@
-#include "nurbs/bezier_extraction.h"
+#include "dnurbs/nurbs/bezier_extraction.h"
 
 #include <random>
 
@@ -8,9 +8,9 @@
 #include "tests/common/error_message.h"
 #include "tests/nurbs/random_shapes.h"
 
-#include "core/error.h"
-#include "nurbs/bernstein.h"
-#include "nurbs/knot_insertion.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/bernstein.h"
+#include "dnurbs/nurbs/knot_insertion.h"
 
 namespace dnurbs {
 namespace {

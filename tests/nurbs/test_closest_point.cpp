@@ -1,4 +1,4 @@
-#include "nurbs/closest_point.h"
+#include "dnurbs/nurbs/closest_point.h"
 
 #include <cmath>
 
@@ -9,7 +9,7 @@
 #include "tests/nurbs/brute_force_projection.h"
 #include "tests/nurbs/sample_shapes.h"
 
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "nurbs/curve_projector.h"
+#include "dnurbs/nurbs/curve_projector.h"
 
 #include <cmath>
 #include <iostream>
@@ -12,8 +12,8 @@
 #include "tests/nurbs/brute_force_projection.h"
 #include "tests/nurbs/random_shapes.h"
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -2,13 +2,13 @@
 // (after polishing, to round-off), is not exact one degree higher, and the composite form keeps
 // the exactness.
 
-#include "nurbs/dunavant_rules.h"
+#include "dnurbs/nurbs/dunavant_rules.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

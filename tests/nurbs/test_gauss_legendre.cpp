@@ -1,10 +1,10 @@
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,10 +1,10 @@
-#include "nurbs/jacobian.h"
+#include "dnurbs/nurbs/jacobian.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 #include "sample_shapes.h"
 
 namespace dnurbs {

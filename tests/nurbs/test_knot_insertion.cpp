@@ -1,4 +1,4 @@
-#include "nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/knot_insertion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +15,8 @@
 #include "tests/nurbs/knot_operation_shapes.h"
 #include "tests/nurbs/random_shapes.h"
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "nurbs/knot_removal.h"
+#include "dnurbs/nurbs/knot_removal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +16,10 @@
 #include "tests/nurbs/knot_operation_shapes.h"
 #include "tests/nurbs/random_shapes.h"
 
-#include "core/error.h"
-#include "nurbs/knot_insertion.h"
-#include "nurbs/periodic_window.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/knot_insertion.h"
+#include "dnurbs/nurbs/periodic_window.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "nurbs/knot_vector.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 #include <cmath>
 #include <limits>
@@ -10,7 +10,7 @@
 #include "tests/common/error_message.h"
 #include "tests/nurbs/random_shapes.h"
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "nurbs/nearest_candidate.h"
+#include "dnurbs/nurbs/nearest_candidate.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "nurbs/nurbs_curve.h"
+#include "dnurbs/nurbs/nurbs_curve.h"
 
 #include <cmath>
 #include <limits>
@@ -6,8 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 #include "sample_shapes.h"
 
 namespace dnurbs {

@@ -1,11 +1,11 @@
-#include "nurbs/nurbs_surface.h"
+#include "dnurbs/nurbs/nurbs_surface.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 #include "sample_shapes.h"
 
 namespace dnurbs {

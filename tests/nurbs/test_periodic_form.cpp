@@ -1,6 +1,6 @@
 // The open form of a periodic shape (what STEP, IGES and OBJ carry) is the same shape, and
 // reading it back gives the periodic shape again; shapes that only look closed stay open.
-#include "nurbs/periodic_form.h"
+#include "dnurbs/nurbs/periodic_form.h"
 
 #include <random>
 

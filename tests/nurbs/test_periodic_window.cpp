@@ -1,4 +1,4 @@
-#include "nurbs/periodic_window.h"
+#include "dnurbs/nurbs/periodic_window.h"
 
 #include <random>
 
@@ -8,7 +8,7 @@
 #include "tests/common/error_message.h"
 #include "tests/nurbs/random_shapes.h"
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

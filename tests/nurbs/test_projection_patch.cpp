@@ -1,4 +1,4 @@
-#include "nurbs/projection_patch.h"
+#include "dnurbs/nurbs/projection_patch.h"
 
 #include <random>
 #include <vector>
@@ -7,7 +7,7 @@
 
 #include "tests/nurbs/random_shapes.h"
 
-#include "nurbs/bezier_extraction.h"
+#include "dnurbs/nurbs/bezier_extraction.h"
 
 namespace dnurbs {
 namespace {

@@ -1,7 +1,7 @@
 // The shape generators: linear parametrization of the Greville rods and sheets, exact boxes,
 // cylinders, cones and revolutions, extrusions, lofts through their sections, span splitting.
 
-#include "nurbs/shape_generators.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 #include <cmath>
 #include <numbers>
@@ -10,8 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/random_shapes.h"
 

@@ -1,15 +1,15 @@
 // Tests of nurbs/simplex_spline.h: Micchelli's recurrence for bivariate simplex splines with
 // derivatives, the half-open convention, and the normalization (integral 1 / ((m+1)(m+2))).
 
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "../common/error_message.h"
-#include "core/error.h"
-#include "nurbs/dunavant_rules.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/dunavant_rules.h"
 
 namespace dnurbs {
 namespace {

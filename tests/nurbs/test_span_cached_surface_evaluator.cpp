@@ -1,4 +1,4 @@
-#include "nurbs/span_cached_surface_evaluator.h"
+#include "dnurbs/nurbs/span_cached_surface_evaluator.h"
 
 #include <cmath>
 #include <limits>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "sample_shapes.h"
 
 namespace dnurbs {

@@ -2,7 +2,7 @@
 // qd and the second derivatives of the swung surface with respect to its coordinates, all against
 // finite differences of the surface, for fixed and free weights; the scaling gauge; the layout.
 
-#include "nurbs/swung_jacobian.h"
+#include "dnurbs/nurbs/swung_jacobian.h"
 
 #include <cmath>
 #include <random>
@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "swung_sample_shapes.h"
 #include "tests/common/error_message.h"
 

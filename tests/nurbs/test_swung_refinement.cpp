@@ -1,13 +1,13 @@
 // Tests of nurbs/swung_refinement.h: knot insertion into both curves keeps the surface (to
 // rounding), adds S k control points per curve (open and periodic), and rejects negative counts.
 
-#include "nurbs/swung_refinement.h"
+#include "dnurbs/nurbs/swung_refinement.h"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 

@@ -1,13 +1,13 @@
 // Tests of nurbs/swung_shapes.h: the prototype swung surfaces are the exact quadrics and torus
 // they name, and the open hat has the shape its parameters describe.
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

@@ -2,15 +2,15 @@
 // derivatives against finite differences, closed trajectories without a seam, normals (including
 // the collapsed poles of a sphere) and the validation of its input.
 
-#include "nurbs/swung_surface.h"
+#include "dnurbs/nurbs/swung_surface.h"
 
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "swung_sample_shapes.h"
 #include "tests/common/error_message.h"
 

@@ -3,14 +3,14 @@
 // interior edges and knot segments (one-sided derivatives), and their derivatives match finite
 // differences.
 
-#include "nurbs/triangular_bspline_basis.h"
+#include "dnurbs/nurbs/triangular_bspline_basis.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/triangular_polynomial_cells.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/triangular_polynomial_cells.h"
 #include "triangular_test_helpers.h"
 
 namespace dnurbs {

@@ -1,13 +1,13 @@
 // Tests of nurbs/triangular_knot_clouds.h: the standard placement satisfies the DMS conditions
 // on several domains and degrees, and every violated condition is reported with the knot.
 
-#include "nurbs/triangular_knot_clouds.h"
+#include "dnurbs/nurbs/triangular_knot_clouds.h"
 
 #include <gtest/gtest.h>
 
 #include "../common/error_message.h"
-#include "core/error.h"
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 #include "triangular_test_helpers.h"
 
 namespace dnurbs {

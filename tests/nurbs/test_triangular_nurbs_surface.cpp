@@ -2,13 +2,13 @@
 // reproduced, invariance under a common weight factor), its parametric derivatives and its
 // Jacobian with respect to control points and weights, all against finite differences.
 
-#include "nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "triangular_test_helpers.h"
 
 namespace dnurbs {

@@ -1,14 +1,14 @@
 // Tests of nurbs/triangular_polynomial_cells.h: the cells tile their triangle, no knot segment
 // crosses a cell, and every B-spline is one polynomial of degree n on every cell.
 
-#include "nurbs/triangular_polynomial_cells.h"
+#include "dnurbs/nurbs/triangular_polynomial_cells.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "nurbs/dunavant_rules.h"
-#include "nurbs/simplex_spline.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/dunavant_rules.h"
+#include "dnurbs/nurbs/simplex_spline.h"
 #include "triangular_test_helpers.h"
 
 namespace dnurbs {

@@ -2,15 +2,15 @@
 // boundary), connectivity (edge neighbours, counter-clockwise fans, boundary loops) and point
 // location with the half-open convention.
 
-#include "nurbs/triangulation.h"
+#include "dnurbs/nurbs/triangulation.h"
 
 #include <set>
 
 #include <gtest/gtest.h>
 
 #include "../common/error_message.h"
-#include "core/error.h"
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 namespace dnurbs {
 namespace {

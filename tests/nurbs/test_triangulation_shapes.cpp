@@ -1,11 +1,11 @@
 // Tests of nurbs/triangulation_shapes.h: grids, an L-shape, a square with a hole and uniform
 // refinement, checked by counts, areas and boundary loops.
 
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

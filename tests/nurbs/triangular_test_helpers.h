@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 namespace dnurbs::test {
 

@@ -1,11 +1,11 @@
 // Binary frames: what is encoded is decoded, to float precision; a damaged frame is refused.
 
-#include "sculpt/sculpt_frame.h"
+#include "dnurbs/sculpt/sculpt_frame.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

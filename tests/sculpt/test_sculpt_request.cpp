@@ -1,6 +1,6 @@
 // Client messages parsed into requests: every type with its keys; the limits of the scene.
 
-#include "sculpt/sculpt_request.h"
+#include "dnurbs/sculpt/sculpt_request.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

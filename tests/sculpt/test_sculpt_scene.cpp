@@ -1,7 +1,7 @@
 // The session's scene: the settings written through the scene's own material keys, pins as
 // point_target constraints.
 
-#include "sculpt/sculpt_scene.h"
+#include "dnurbs/sculpt/sculpt_scene.h"
 
 #include <filesystem>
 

@@ -2,7 +2,7 @@
 // message leaves the state exactly as it was, drags and pushes follow the same trajectory as the
 // scene's own springs and point forces, and a client that leaves takes its drags with it.
 
-#include "sculpt/sculpt_session.h"
+#include "dnurbs/sculpt/sculpt_session.h"
 
 #include <filesystem>
 #include <string>
@@ -12,10 +12,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "io/shape_file.h"
-#include "sculpt/sculpt_frame.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/sculpt/sculpt_frame.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "surface/adaptive_tessellation.h"
+#include "dnurbs/surface/adaptive_tessellation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
-#include "surface/parametric_surface.h"
-#include "surface/parametric_surface_tessellation.h"
-#include "surface/restricted_mesh.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
+#include "dnurbs/surface/restricted_mesh.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "surface/deformation_field.h"
+#include "dnurbs/surface/deformation_field.h"
 
 #include <cmath>
 #include <map>
@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
-#include "surface/adaptive_tessellation.h"
-#include "surface/parametric_surface_tessellation.h"
-#include "surface/restricted_mesh.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/surface/adaptive_tessellation.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
+#include "dnurbs/surface/restricted_mesh.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "surface/global_deformation.h"
+#include "dnurbs/surface/global_deformation.h"
 
 #include <array>
 #include <cmath>
@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "surface/deformable_superquadric_shape.h"
-#include "surface/signed_power.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
+#include "dnurbs/surface/signed_power.h"
 #include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {

@@ -1,4 +1,4 @@
-#include "surface/grid.h"
+#include "dnurbs/surface/grid.h"
 
 #include <cmath>
 #include <limits>
@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "surface/grid_difference_operators.h"
-#include "surface/node_chain.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/grid_difference_operators.h"
+#include "dnurbs/surface/node_chain.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "surface/parametric_fe_mesh.h"
+#include "dnurbs/surface/parametric_fe_mesh.h"
 
 #include <cmath>
 #include <numbers>
@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/SparseCholesky>
 
-#include "core/error.h"
-#include "surface/deformable_superquadric_shape.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
 #include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {

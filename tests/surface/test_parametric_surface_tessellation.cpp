@@ -1,4 +1,4 @@
-#include "surface/parametric_surface_tessellation.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
-#include "surface/parametric_surface.h"
-#include "surface/tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/surface/parametric_surface.h"
+#include "dnurbs/surface/tessellation.h"
 
 namespace dnurbs {
 namespace {

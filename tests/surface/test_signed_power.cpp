@@ -1,4 +1,4 @@
-#include "surface/signed_power.h"
+#include "dnurbs/surface/signed_power.h"
 
 #include <cmath>
 #include <limits>

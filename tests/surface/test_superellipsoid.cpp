@@ -1,4 +1,4 @@
-#include "surface/superellipsoid.h"
+#include "dnurbs/surface/superellipsoid.h"
 
 #include <cmath>
 #include <iostream>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/superquadric_test_support.h"
 
 namespace dnurbs {

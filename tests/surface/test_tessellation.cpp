@@ -1,4 +1,4 @@
-#include "surface/tessellation.h"
+#include "dnurbs/surface/tessellation.h"
 
 #include <cmath>
 #include <map>
@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 namespace dnurbs {
 namespace {

@@ -14,13 +14,13 @@
 #include <nlohmann/json.hpp>
 #include "tests/tools/run_dnurbs.h"
 
-#include "design/energy_minimization.h"
-#include "design/superquadric_fitting.h"
-#include "io/mesh_import.h"
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "io/shape_file.h"
-#include "surface/deformable_superquadric_shape.h"
+#include "dnurbs/design/energy_minimization.h"
+#include "dnurbs/design/superquadric_fitting.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/surface/deformable_superquadric_shape.h"
 
 namespace dnurbs {
 namespace {

@@ -18,9 +18,9 @@
 #include <nlohmann/json.hpp>
 #include "tests/tools/run_dnurbs.h"
 
-#include "core/version.h"
-#include "io/mesh_import.h"
-#include "io/shape_file.h"
+#include "dnurbs/core/version.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/shape_file.h"
 
 namespace dnurbs {
 namespace {

@@ -14,8 +14,8 @@
 
 #include "tests/tools/run_dnurbs.h"
 
-#include "io/mesh_import.h"
-#include "io/shape_file.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/shape_file.h"
 #include "tests/common/surface_comparison.h"
 
 namespace dnurbs {

@@ -9,10 +9,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/cad_file.h"
-#include "io/shape_file.h"
-#include "nurbs/primitive_shapes.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/io/shape_file.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/shape_generators.h"
 #include "tests/tools/run_dnurbs.h"
 
 namespace dnurbs {

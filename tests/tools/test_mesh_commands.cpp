@@ -9,9 +9,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/mesh_import.h"
-#include "io/models/triangular_dnurbs_surface_scene.h"
-#include "io/triangular_shape_file.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/models/triangular_dnurbs_surface_scene.h"
+#include "dnurbs/io/triangular_shape_file.h"
 #include "tests/tools/run_dnurbs.h"
 
 namespace dnurbs {

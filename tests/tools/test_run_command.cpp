@@ -21,9 +21,9 @@
 
 #include "tests/tools/run_dnurbs.h"
 
-#include "io/checkpoint.h"
-#include "io/mesh_import.h"
-#include "io/shape_file.h"
+#include "dnurbs/io/checkpoint.h"
+#include "dnurbs/io/mesh_import.h"
+#include "dnurbs/io/shape_file.h"
 
 namespace dnurbs {
 namespace {

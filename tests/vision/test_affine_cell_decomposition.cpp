@@ -1,4 +1,4 @@
-#include "vision/affine_cell_decomposition.h"
+#include "dnurbs/vision/affine_cell_decomposition.h"
 
 #include <cmath>
 #include <numbers>

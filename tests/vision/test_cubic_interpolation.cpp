@@ -1,4 +1,4 @@
-#include "vision/cubic_interpolation.h"
+#include "dnurbs/vision/cubic_interpolation.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "vision/edge_potential.h"
+#include "dnurbs/vision/edge_potential.h"
 
 #include <cmath>
 #include <cstdio>

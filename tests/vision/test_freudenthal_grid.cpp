@@ -1,4 +1,4 @@
-#include "vision/freudenthal_grid.h"
+#include "dnurbs/vision/freudenthal_grid.h"
 
 #include <map>
 #include <string>

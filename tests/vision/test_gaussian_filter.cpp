@@ -1,4 +1,4 @@
-#include "vision/gaussian_filter.h"
+#include "dnurbs/vision/gaussian_filter.h"
 
 #include <cmath>
 #include <cstdio>

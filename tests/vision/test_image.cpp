@@ -1,4 +1,4 @@
-#include "vision/image.h"
+#include "dnurbs/vision/image.h"
 
 #include <fstream>
 #include <string>

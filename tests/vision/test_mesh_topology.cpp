@@ -1,10 +1,10 @@
-#include "vision/mesh_topology.h"
+#include "dnurbs/vision/mesh_topology.h"
 
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "vision/t_snake.h"
+#include "dnurbs/vision/t_snake.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "vision/t_surface.h"
+#include "dnurbs/vision/t_surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "../common/error_message.h"
-#include "vision/mesh_topology.h"
+#include "dnurbs/vision/mesh_topology.h"
 #include "vision_test_images.h"
 
 namespace dnurbs {

@@ -1,4 +1,4 @@
-#include "vision/tetrahedral_decomposition.h"
+#include "dnurbs/vision/tetrahedral_decomposition.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "vision/mesh_topology.h"
+#include "dnurbs/vision/mesh_topology.h"
 
 namespace dnurbs {
 namespace {

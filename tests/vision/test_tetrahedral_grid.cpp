@@ -1,4 +1,4 @@
-#include "vision/tetrahedral_grid.h"
+#include "dnurbs/vision/tetrahedral_grid.h"
 
 #include <map>
 #include <string>

@@ -1,4 +1,4 @@
-#include "vision/topology_adaptive_parameters.h"
+#include "dnurbs/vision/topology_adaptive_parameters.h"
 
 #include <cmath>
 #include <string>

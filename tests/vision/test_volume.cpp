@@ -1,4 +1,4 @@
-#include "vision/volume.h"
+#include "dnurbs/vision/volume.h"
 
 #include <zlib.h>
 

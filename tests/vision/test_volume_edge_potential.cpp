@@ -1,4 +1,4 @@
-#include "vision/volume_edge_potential.h"
+#include "dnurbs/vision/volume_edge_potential.h"
 
 #include <cmath>
 #include <cstdio>

@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "dynamics/core/forces.h"
-#include "dynamics/core/spring.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/spring.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

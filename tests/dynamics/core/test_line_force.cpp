@@ -1,10 +1,10 @@
-#include "dynamics/core/line_force.h"
+#include "dnurbs/dynamics/core/line_force.h"
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "surface/grid.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/surface/grid.h"
 
 namespace dnurbs {
 namespace {

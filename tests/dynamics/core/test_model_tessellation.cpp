@@ -1,4 +1,4 @@
-#include "dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "nurbs/primitive_shapes.h"
-#include "surface/parametric_surface_tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/surface/parametric_surface_tessellation.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "dynamics/core/obstacles.h"
+#include "dnurbs/dynamics/core/obstacles.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/grid/terzopoulos_surface.h"
-#include "dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
 #include "tests/common/grid_scenes.h"
 
 namespace dnurbs {

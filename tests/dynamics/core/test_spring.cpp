@@ -2,7 +2,7 @@
 // force is minus the gradient of the spring energy (finite differences), windows and drags give
 // the states they promise, ids stay stable when springs are removed, bad input throws.
 
-#include "dynamics/core/spring.h"
+#include "dnurbs/dynamics/core/spring.h"
 
 #include <cmath>
 #include <string>
@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 #include "tests/common/dynamics_test_helpers.h"
 #include "tests/common/error_message.h"
 

@@ -1,16 +1,16 @@
 // Tests of dynamics/core/system.h: stacking of models (block-diagonal matrices, stacked
 // coordinates) and value semantics.
 
-#include "dynamics/core/system.h"
+#include "dnurbs/dynamics/core/system.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

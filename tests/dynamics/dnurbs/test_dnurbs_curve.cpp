@@ -1,7 +1,7 @@
 // Tests of dynamics/dnurbs/dnurbs_curve.h: mass and stiffness matrices (Terzopoulos 2003,
 // eqs. 1.25-1.26), their natural frequencies under knot refinement, and input validation.
 
-#include "dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
 
 #include <cmath>
 #include <iostream>
@@ -12,7 +12,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

@@ -3,7 +3,7 @@
 // re-assembled matrices against an independent quadrature, energy conservation of free motion
 // and the minimum-weight projection.
 
-#include "dynamics/dnurbs/dnurbs_model.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +12,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

@@ -15,15 +15,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/sparse_matrix.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/static_equilibrium.h"
-#include "nurbs/primitive_shapes.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/core/sparse_matrix.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
+#include "dnurbs/nurbs/shape_generators.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

@@ -2,7 +2,7 @@
 // thin-plate-under-tension energy of eq 1.20): mass and stiffness matrices, sculpting to static
 // equilibrium, and the pressure and gravity forces of dynamics/core/forces.h.
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 
 #include <cmath>
 #include <iostream>
@@ -11,11 +11,11 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/static_equilibrium.h"
-#include "nurbs/gauss_legendre.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/nurbs/gauss_legendre.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sparse_matrix.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "nurbs/shape_generators.h"
+#include "dnurbs/core/sparse_matrix.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs {
 namespace {

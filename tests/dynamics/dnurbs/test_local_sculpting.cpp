@@ -1,18 +1,18 @@
 // Local sculpting: which control points a sculpted region keeps, and the error that freezing the
 // others introduces against the full static solve.
 
-#include "dynamics/dnurbs/local_sculpting.h"
+#include "dnurbs/dynamics/dnurbs/local_sculpting.h"
 
 #include <cmath>
 #include <iostream>
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/static_equilibrium.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/nurbs/knot_vector.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

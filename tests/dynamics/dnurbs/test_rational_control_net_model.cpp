@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "nurbs/knot_vector.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/nurbs/knot_vector.h"
 
 namespace dnurbs {
 namespace {

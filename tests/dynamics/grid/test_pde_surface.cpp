@@ -1,4 +1,4 @@
-#include "dynamics/grid/pde_surface.h"
+#include "dnurbs/dynamics/grid/pde_surface.h"
 
 #include <cmath>
 #include <cstdio>
@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "dynamics/grid/snake.h"
+#include "dnurbs/dynamics/grid/snake.h"
 
 #include <cmath>
 #include <numbers>
@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
 
 namespace dnurbs {
 namespace {

@@ -1,4 +1,4 @@
-#include "dynamics/grid/terzopoulos_surface.h"
+#include "dnurbs/dynamics/grid/terzopoulos_surface.h"
 
 #include <cmath>
 #include <cstdio>
@@ -11,14 +11,14 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/line_force.h"
-#include "dynamics/core/obstacles.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/semi_implicit_step.h"
-#include "surface/triangle_mesh.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/line_force.h"
+#include "dnurbs/dynamics/core/obstacles.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/surface/triangle_mesh.h"
 #include "tests/common/grid_scenes.h"
 
 namespace dnurbs {

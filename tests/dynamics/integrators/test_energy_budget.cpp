@@ -3,7 +3,7 @@
 // trapezoidal work is its energy identity), a stiff explicit force fails the check early and is
 // named, negative numerical damping is named as the setting, and honest work is never flagged.
 
-#include "dynamics/integrators/energy_budget.h"
+#include "dnurbs/dynamics/integrators/energy_budget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,11 +13,11 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

@@ -5,7 +5,7 @@
 // k N N^T) P = k N target^T, and a drag (target and parameter moving every step) follows the
 // trajectory of a step matrix refactored from scratch.
 
-#include "dynamics/integrators/implicit_springs.h"
+#include "dnurbs/dynamics/integrators/implicit_springs.h"
 
 #include <algorithm>
 #include <array>
@@ -18,12 +18,12 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "core/error.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

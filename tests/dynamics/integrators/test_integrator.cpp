@@ -2,7 +2,7 @@
 // eq. 1.13), implicit-euler and newmark against the exact modal solution of a linear D-NURBS
 // string, Newmark energy conservation, the factor-once fast path, and error handling.
 
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 #include <cmath>
 #include <iostream>
@@ -14,12 +14,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

@@ -3,7 +3,7 @@
 // over many factorizations, errors, and free-weight trajectories of the lean step against the
 // reference path (separate assembly and force calls, SparseCholesky at every iterate).
 
-#include "dynamics/integrators/lean_step_matrix.h"
+#include "dnurbs/dynamics/integrators/lean_step_matrix.h"
 
 #include <cmath>
 #include <iostream>
@@ -12,12 +12,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_curve.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 
 namespace dnurbs {
 namespace {

@@ -10,10 +10,10 @@
 
 #include <Eigen/Geometry>
 
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/rigid_body_integrator.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/rigid_body_integrator.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/common/superquadric_test_helpers.h"
 
 namespace dnurbs {

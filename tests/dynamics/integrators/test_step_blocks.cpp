@@ -4,7 +4,7 @@
 // scalar matrix equals the coordinate-by-coordinate solve of the expanded S (x) I_3 system, the
 // backend follows the free-node count, and the two backends step a sheet to the same trajectory.
 
-#include "dynamics/integrators/step_blocks.h"
+#include "dnurbs/dynamics/integrators/step_blocks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +15,11 @@
 #include <gtest/gtest.h>
 #include <Eigen/SparseCholesky>
 
-#include "core/kronecker.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/integrators/integrator.h"
+#include "dnurbs/core/kronecker.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
 #include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {

@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "constraints/constraint_solver.h"
-#include "constraints/point_constraints.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/system.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/point_constraints.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/system.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/common/superquadric_test_helpers.h"
 
 namespace dnurbs {

@@ -14,9 +14,9 @@
 
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "dynamics/superquadric/deformable_superquadric_model.h"
-#include "surface/signed_power.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/surface/signed_power.h"
 #include "tests/common/superquadric_test_helpers.h"
 
 namespace dnurbs {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/superquadric/deformable_superquadric_model.h"
+#include "dnurbs/dynamics/superquadric/deformable_superquadric_model.h"
 #include "tests/common/superquadric_test_helpers.h"
 
 namespace dnurbs {

@@ -13,9 +13,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "dynamics/dnurbs/dnurbs_surface.h"
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 
 namespace dnurbs::testing {

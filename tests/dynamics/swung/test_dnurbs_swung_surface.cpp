@@ -6,7 +6,7 @@
 // pull against the tensor-product twin restricted to swung motions, and the semi-implicit
 // stepper's equilibrium.
 
-#include "dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,11 +18,11 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/semi_implicit_step.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/semi_implicit_step.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/dynamics/swung/swung_model_helpers.h"
 #include "tests/nurbs/swung_sample_shapes.h"

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "dynamics/swung/swung_gauge.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/dynamics/swung/swung_gauge.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/dynamics/swung/swung_model_helpers.h"
 

@@ -11,13 +11,13 @@
 
 #include <gtest/gtest.h>
 
-#include "constraints/constraint_solver.h"
-#include "constraints/surface_constraints.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/surface_constraints.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/dynamics/swung/swung_model_helpers.h"
 
 namespace dnurbs {

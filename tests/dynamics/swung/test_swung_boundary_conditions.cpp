@@ -2,14 +2,14 @@
 // border coordinates of open, capped and closed surfaces; fixing them holds every border edge
 // exactly while the rest of the coordinates move.
 
-#include "dynamics/swung/swung_boundary_conditions.h"
+#include "dnurbs/dynamics/swung/swung_boundary_conditions.h"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
-#include "dynamics/swung/swung_parametric_surface.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/dynamics/swung/swung_parametric_surface.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 

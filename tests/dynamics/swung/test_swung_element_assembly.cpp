@@ -2,14 +2,14 @@
 // rank updates, one cross product per element, curve second derivatives grouped per Gauss point)
 // equals the plain sum over Gauss points of the point Jacobians and add_swung_hessian.
 
-#include "dynamics/swung/swung_element_assembly.h"
+#include "dnurbs/dynamics/swung/swung_element_assembly.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 
 namespace dnurbs {

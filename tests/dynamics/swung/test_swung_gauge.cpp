@@ -2,11 +2,11 @@
 // = 0 at random parameters), the choice of the gauge coordinate, and which fixed coordinates
 // already remove the gauge.
 
-#include "dynamics/swung/swung_gauge.h"
+#include "dnurbs/dynamics/swung/swung_gauge.h"
 
 #include <gtest/gtest.h>
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 

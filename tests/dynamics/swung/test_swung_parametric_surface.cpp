@@ -2,7 +2,7 @@
 // tensor-product twin's, the orientation rule on the prototypes (both signs, the flat fallback,
 // an open trajectory) and the error for a surface without area.
 
-#include "dynamics/swung/swung_parametric_surface.h"
+#include "dnurbs/dynamics/swung/swung_parametric_surface.h"
 
 #include <algorithm>
 #include <utility>
@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 

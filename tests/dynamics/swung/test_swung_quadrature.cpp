@@ -1,13 +1,13 @@
 // Tests of dynamics/swung/swung_quadrature.h: the Gauss rule over the span products of a swung
 // surface, the cached bases against fresh evaluations, and the checked material values.
 
-#include "dynamics/swung/swung_quadrature.h"
+#include "dnurbs/dynamics/swung/swung_quadrature.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 

@@ -3,13 +3,13 @@
 // every matrix, the energy, the internal force and the inertial force, and the model chooses the
 // fast path only where it applies.
 
-#include "dynamics/swung/swung_separable_forms.h"
+#include "dnurbs/dynamics/swung/swung_separable_forms.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "dynamics/swung/dnurbs_swung_surface.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/dynamics/swung/dnurbs_swung_surface.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/nurbs/swung_sample_shapes.h"
 
 namespace dnurbs {

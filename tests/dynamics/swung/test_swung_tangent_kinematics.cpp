@@ -2,13 +2,13 @@
 // (tests/dynamics/swung/test_dnurbs_swung_surface_shape.cpp): the columns of a periodic curve's
 // wrapped window come out ascending, and a coordinate listed twice has its columns summed.
 
-#include "dynamics/swung/swung_tangent_kinematics.h"
+#include "dnurbs/dynamics/swung/swung_tangent_kinematics.h"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {

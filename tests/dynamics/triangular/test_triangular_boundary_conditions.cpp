@@ -13,7 +13,7 @@
 // and Shells, table 35; Taylor & Govindjee, "Solution of clamped rectangular plate problems",
 // Communications in Numerical Methods in Engineering 20, 2004, to six digits).
 
-#include "dynamics/triangular/triangular_boundary_conditions.h"
+#include "dnurbs/dynamics/triangular/triangular_boundary_conditions.h"
 
 #include <cmath>
 #include <iostream>
@@ -23,8 +23,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 
-#include "core/error.h"
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {

@@ -3,17 +3,17 @@
 // against their definitions, the free-weight Jacobian, Jdot qd and inertial force against
 // finite differences, sculpting to static equilibrium, and bad input.
 
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
 
 #include <iostream>
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "dynamics/core/forces.h"
-#include "dynamics/integrators/integrator.h"
-#include "dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/forces.h"
+#include "dnurbs/dynamics/integrators/integrator.h"
+#include "dnurbs/dynamics/integrators/static_equilibrium.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {

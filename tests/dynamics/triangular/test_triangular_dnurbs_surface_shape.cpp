@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/core/model_tessellation.h"
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
-#include "dynamics/triangular/triangular_local_sculpting.h"
-#include "dynamics/triangular/triangular_tessellation.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/core/model_tessellation.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/dynamics/triangular/triangular_local_sculpting.h"
+#include "dnurbs/dynamics/triangular/triangular_tessellation.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {

@@ -1,7 +1,7 @@
 // Tests of dynamics/triangular/triangular_free_weight_terms.h against the dense Jacobian of one
 // point: the 4 x 4 blocks of sum_alpha c_alpha J_alpha^T J_alpha and J_alpha^T f.
 
-#include "dynamics/triangular/triangular_free_weight_terms.h"
+#include "dnurbs/dynamics/triangular/triangular_free_weight_terms.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-#include "dynamics/triangular/triangular_local_sculpting.h"
+#include "dnurbs/dynamics/triangular/triangular_local_sculpting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {

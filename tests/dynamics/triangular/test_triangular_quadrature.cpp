@@ -2,15 +2,15 @@
 // exact (the matrices do not change with the rule's degree), the cached B-splines are the
 // basis's, and the composite rule's error against the exact matrices is measured.
 
-#include "dynamics/triangular/triangular_quadrature.h"
+#include "dnurbs/dynamics/triangular/triangular_quadrature.h"
 
 #include <iostream>
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "core/error.h"
-#include "dynamics/triangular/triangular_dnurbs_surface.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/triangular/triangular_dnurbs_surface.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {

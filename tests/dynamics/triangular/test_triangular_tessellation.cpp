@@ -2,7 +2,7 @@
 // vertices, orientation, exactness on a flat surface, h^2 chord error) and adaptive meshes
 // (conforming, within the error bound, fewer triangles than uniform at the same error).
 
-#include "dynamics/triangular/triangular_tessellation.h"
+#include "dnurbs/dynamics/triangular/triangular_tessellation.h"
 
 #include <cmath>
 #include <iostream>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "core/error.h"
+#include "dnurbs/core/error.h"
 #include "triangular_model_helpers.h"
 
 namespace dnurbs {

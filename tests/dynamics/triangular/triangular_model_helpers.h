@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "nurbs/triangular_nurbs_surface.h"
-#include "nurbs/triangulation_shapes.h"
+#include "dnurbs/nurbs/triangular_nurbs_surface.h"
+#include "dnurbs/nurbs/triangulation_shapes.h"
 
 namespace dnurbs::test {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "io/cad_file.h"
-#include "nurbs/primitive_shapes.h"
+#include "dnurbs/io/cad_file.h"
+#include "dnurbs/nurbs/primitive_shapes.h"
 
 int main() {
   const dnurbs::NurbsCurve circle = dnurbs::full_circle(2.0);

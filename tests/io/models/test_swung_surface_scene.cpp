@@ -4,7 +4,7 @@
 // the cost report sets the model against its tensor-product twin, boundary keys and constraints
 // reach the model, and the four example scenes of Fig. 6 keep the properties they are built on.
 
-#include "io/models/swung_surface_scene.h"
+#include "dnurbs/io/models/swung_surface_scene.h"
 
 #include <filesystem>
 #include <fstream>
@@ -17,9 +17,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "nurbs/swung_shapes.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/nurbs/swung_shapes.h"
 #include "tests/dynamics/swung/swung_model_helpers.h"
 
 namespace dnurbs {

@@ -2,7 +2,7 @@
 // generated domains, inline shapes and shape files build the model; boundary conditions, local
 // sculpting, forces on the domain, meshes (uniform and adaptive) and the cost report work.
 
-#include "io/models/triangular_dnurbs_surface_scene.h"
+#include "dnurbs/io/models/triangular_dnurbs_surface_scene.h"
 
 #include <filesystem>
 #include <fstream>
@@ -13,11 +13,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "dynamics/triangular/triangular_local_sculpting.h"
-#include "io/scene.h"
-#include "io/scene_simulation.h"
-#include "io/triangular_shape_file.h"
+#include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/triangular/triangular_local_sculpting.h"
+#include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_simulation.h"
+#include "dnurbs/io/triangular_shape_file.h"
 
 namespace dnurbs {
 namespace {
