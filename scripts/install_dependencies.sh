@@ -11,6 +11,7 @@ packages=(
   libnlopt-cxx-dev       # optimization (design and fitting)
   libassimp-dev          # mesh export and import
   nlohmann-json3-dev     # shape and scene files (JSON)
+  libcli11-dev           # the dnurbs command's options (tools/command_line.h; header-only)
   libsuitesparse-dev     # CHOLMOD: supernodal sparse Cholesky for large blocks (core/sparse_cholesky.h)
   libopenblas-dev        # fast BLAS under CHOLMOD's supernodes (Debian's alternatives switch
                          # libblas.so.3 to OpenBLAS; dnurbs pins it to one thread at run time)

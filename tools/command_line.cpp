@@ -10,20 +10,29 @@
 
 namespace dnurbs::tools {
 
-bool wants_help(const std::vector<std::string>& arguments) {
-  for (const auto& argument : arguments) {
-    if (argument == "-h" || argument == "--help") {
-      return true;
-    }
+bool parse_command_line(CLI::App& app, const std::vector<std::string>& arguments, const char* help,
+                        std::ostream& out) {
+  // CLI11 takes the arguments last first
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    out << help;
+    return false;
+  } catch (const CLI::ParseError& error) {
+    throw UsageError(error.what());
   }
-  return false;
+  return true;
 }
 
-const std::string& flag_value(const std::vector<std::string>& arguments, size_t& index) {
-  if (index + 1 >= arguments.size()) {
-    throw UsageError(arguments[index] + " needs a value");
-  }
-  return arguments[++index];
+const CLI::Validator& finite_number() {
+  static const CLI::Validator validator(
+      [](const std::string& text) {
+        const double value = std::strtod(text.c_str(), nullptr);
+        return std::isfinite(value) ? std::string() : "expected a finite number, got " + text;
+      },
+      "FINITE");
+  return validator;
 }
 
 double parse_double(const std::string& text, const std::string& what) {
@@ -35,18 +44,6 @@ double parse_double(const std::string& text, const std::string& what) {
     throw UsageError(what + ": expected a finite number, got \"" + text + "\"");
   }
   return value;
-}
-
-int parse_int(const std::string& text, const std::string& what, int minimum, int maximum) {
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || value < minimum ||
-      value > maximum) {
-    throw UsageError(what + ": expected an integer in " + std::to_string(minimum) + ".." +
-                     std::to_string(maximum) + ", got \"" + text + "\"");
-  }
-  return static_cast<int>(value);
 }
 
 std::vector<double> parse_doubles(const std::string& text, const std::string& what) {

@@ -1,11 +1,13 @@
 #pragma once
-// Small helpers shared by the dnurbs subcommands: usage errors and argument parsing.
+// Small helpers shared by the dnurbs subcommands: usage errors and the command-line parsing of
+// every subcommand with CLI11 (Debian's libcli11-dev, header-only).
 
 #include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 namespace dnurbs::tools {
@@ -21,17 +23,18 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitError = 1;  ///< bad input file or failed processing
 inline constexpr int kExitUsage = 2;  ///< bad command line
 
-/// True if `arguments` holds -h or --help.
-bool wants_help(const std::vector<std::string>& arguments);
+/// Parses `arguments` (the words after the command's name) into the options and positionals a
+/// command added to `app` with CLI11 (typed values, ranges, repeated and missing options).
+/// Returns false after writing the command's `help` text to `out` for -h or --help; throws
+/// UsageError with CLI11's message, which names the option and the value, for a bad command line.
+bool parse_command_line(CLI::App& app, const std::vector<std::string>& arguments, const char* help,
+                        std::ostream& out);
 
-/// The value after flag `arguments[index]`, advancing index; throws UsageError if there is none.
-const std::string& flag_value(const std::vector<std::string>& arguments, size_t& index);
+/// A CLI11 check that a number option is finite (CLI11 reads "nan" and "inf" as numbers).
+const CLI::Validator& finite_number();
 
 /// The whole text as a finite double; throws UsageError naming `what` otherwise.
 double parse_double(const std::string& text, const std::string& what);
-
-/// The whole text as an integer in minimum..maximum; throws UsageError naming `what` otherwise.
-int parse_int(const std::string& text, const std::string& what, int minimum, int maximum);
 
 /// Comma-separated finite doubles ("0.3,0.7"); throws UsageError naming `what` otherwise.
 std::vector<double> parse_doubles(const std::string& text, const std::string& what);

@@ -57,42 +57,29 @@ DesignSettings design_settings(const SceneDesign& design) {
 
 int design_command(const std::vector<std::string>& arguments, std::ostream& out,
                    std::ostream& err) {
-  if (wants_help(arguments)) {
-    out << kDesignHelp;
-    return kExitOk;
-  }
-  if (arguments.empty()) {
-    throw UsageError("design needs a scene file");
-  }
-  const std::filesystem::path scene_path = arguments[0];
-  std::filesystem::path directory = "design_out";
-  std::optional<std::string> algorithm;
-  std::optional<int> max_evaluations;
+  std::string scene_path;
+  std::string directory = "design_out";
+  std::string algorithm;
+  int max_evaluations = 0;
   bool quiet = false;
-  for (size_t i = 1; i < arguments.size(); ++i) {
-    const std::string& flag = arguments[i];
-    if (flag == "--out") {
-      directory = flag_value(arguments, i);
-    } else if (flag == "--algorithm") {
-      algorithm = flag_value(arguments, i);
-      if (*algorithm != "slsqp" && *algorithm != "auglag_lbfgs") {
-        throw UsageError("unknown --algorithm '" + *algorithm + "' (slsqp or auglag_lbfgs)");
-      }
-    } else if (flag == "--max-evaluations") {
-      max_evaluations = parse_int(flag_value(arguments, i), "--max-evaluations", 1, 100000000);
-    } else if (flag == "--quiet") {
-      quiet = true;
-    } else {
-      throw UsageError("unknown design option '" + flag + "'");
-    }
+  CLI::App app("dnurbs design");
+  app.add_option("SCENE", scene_path)->required();
+  app.add_option("--out", directory);
+  const CLI::Option* algorithm_option =
+      app.add_option("--algorithm", algorithm)->check(CLI::IsMember({"slsqp", "auglag_lbfgs"}));
+  const CLI::Option* evaluations_option =
+      app.add_option("--max-evaluations", max_evaluations)->check(CLI::Range(1, 100000000));
+  app.add_flag("--quiet", quiet);
+  if (!parse_command_line(app, arguments, kDesignHelp, out)) {
+    return kExitOk;
   }
   Scene scene = read_scene_file(scene_path);
   SceneDesign design = scene.design.value_or(SceneDesign{});
-  if (algorithm) {
-    design.algorithm = *algorithm;
+  if (*algorithm_option) {
+    design.algorithm = algorithm;
   }
-  if (max_evaluations) {
-    design.max_evaluations = *max_evaluations;
+  if (*evaluations_option) {
+    design.max_evaluations = max_evaluations;
   }
   const int resolution = scene.output.resolution;
   const std::string mesh_name = scene.output.name + ".obj";

@@ -28,7 +28,7 @@ commands:
                                    checkpoints, PNG preview; --resume CHECKPOINT continues
   info [SCENE.json]                models, coordinates, constant matrices, cost per step
   make KIND OUT.json [--KEY V...]  a shape file: line, plane, box, cylinder, cone, sphere, torus,
-                                   revolve, extrude or loft (sheets and rods at rest)
+                                   revolve, extrude or loft
   export SHAPE.json MESH           tessellate a shape into .obj/.stl/.ply/.gltf/.glb, or write
                                    shapes as NURBS to .step/.stp/.iges/.igs
   import PART OUT.json             the curves and surfaces of a STEP or IGES file as shape files

@@ -106,32 +106,15 @@ nlohmann::ordered_json evaluate(const NurbsSurface& surface, const std::vector<d
 }  // namespace
 
 int eval_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kEvalHelp;
-    return kExitOk;
-  }
   std::string file;
   std::vector<std::string> at_flags;
   int order = 1;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument == "--at") {
-      at_flags.push_back(flag_value(arguments, i));
-    } else if (argument == "--derivatives") {
-      order = parse_int(flag_value(arguments, i), "--derivatives", 0, kMaxDerivativeOrder);
-    } else if (argument.starts_with("-") && argument.size() > 1) {
-      throw UsageError("unknown option " + argument);
-    } else if (file.empty()) {
-      file = argument;
-    } else {
-      throw UsageError("unexpected argument " + argument + " (one shape file only)");
-    }
-  }
-  if (file.empty()) {
-    throw UsageError("missing the shape file");
-  }
-  if (at_flags.empty()) {
-    throw UsageError("missing --at (at least one parameter to evaluate at)");
+  CLI::App app("dnurbs eval");
+  app.add_option("SHAPE", file)->required();
+  app.add_option("--at", at_flags)->required()->allow_extra_args(false);
+  app.add_option("--derivatives", order)->check(CLI::Range(0, kMaxDerivativeOrder));
+  if (!parse_command_line(app, arguments, kEvalHelp, out)) {
+    return kExitOk;
   }
   std::vector<std::vector<double>> parameters;
   parameters.reserve(at_flags.size());

@@ -131,44 +131,30 @@ int fit_surface_command(const Eigen::MatrixX3d& points, int degree, int spans, d
 }  // namespace
 
 int fit_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
-  if (wants_help(arguments)) {
-    out << kFitHelp;
-    return kExitOk;
-  }
-  if (arguments.size() < 2) {
-    throw UsageError("fit needs a shape (superquadric or surface) and a point file");
-  }
-  const std::string& shape = arguments[0];
-  const std::filesystem::path path = arguments[1];
+  std::string shape;
+  std::string path;
   int degree = 3;
   int spans = 4;
   double smoothness = 1e-6;
   int iterations = 30;
+  std::string directory;
   FitOutput output;
   bool quiet = false;
-  for (size_t i = 2; i < arguments.size(); ++i) {
-    const std::string& flag = arguments[i];
-    if (flag == "--degree") {
-      degree = parse_int(flag_value(arguments, i), "--degree", 1, 9);
-    } else if (flag == "--spans") {
-      spans = parse_int(flag_value(arguments, i), "--spans", 1, 1000);
-    } else if (flag == "--smoothness") {
-      smoothness = parse_double(flag_value(arguments, i), "--smoothness");
-    } else if (flag == "--out") {
-      output.directory = flag_value(arguments, i);
-    } else if (flag == "--resolution") {
-      output.resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
-    } else if (flag == "--iterations") {
-      iterations = parse_int(flag_value(arguments, i), "--iterations", 1, 100000);
-    } else if (flag == "--quiet") {
-      quiet = true;
-    } else {
-      throw UsageError(std::string("unknown fit option '").append(flag).append("'"));
-    }
+  CLI::App app("dnurbs fit");
+  app.add_option("SHAPE", shape)->required()->check(CLI::IsMember({"superquadric", "surface"}));
+  app.add_option("POINTS", path)->required();
+  app.add_option("--degree", degree)->check(CLI::Range(1, 9));
+  app.add_option("--spans", spans)->check(CLI::Range(1, 1000));
+  app.add_option("--smoothness", smoothness)->check(finite_number());
+  const CLI::Option* directory_option = app.add_option("--out", directory);
+  app.add_option("--resolution", output.resolution)->check(CLI::Range(3, 1024));
+  app.add_option("--iterations", iterations)->check(CLI::Range(1, 100000));
+  app.add_flag("--quiet", quiet);
+  if (!parse_command_line(app, arguments, kFitHelp, out)) {
+    return kExitOk;
   }
-  if (shape != "superquadric" && shape != "surface") {
-    throw UsageError(
-        std::string("unknown fit shape '").append(shape).append("' (superquadric or surface)"));
+  if (*directory_option) {
+    output.directory = directory;
   }
   const Eigen::MatrixX3d points = read_fit_points(path);
   // Progress on stderr (stdout is the JSON result), at most once a second: iterations of the

@@ -23,25 +23,14 @@ options:
 )";
 
 int import_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kImportHelp;
-    return kExitOk;
-  }
-  std::vector<std::string> files;
+  std::vector<std::string> files(2);
   int index = -1;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument == "--index") {
-      index = parse_int(flag_value(arguments, i), "--index", 0, 1 << 30);
-    } else if (argument.starts_with("-") && argument.size() > 1) {
-      throw UsageError("unknown option " + argument);
-    } else {
-      files.push_back(argument);
-    }
-  }
-  if (files.size() != 2) {
-    throw UsageError("expected PART and OUT.json, got " + std::to_string(files.size()) +
-                     " file arguments");
+  CLI::App app("dnurbs import");
+  app.add_option("PART", files[0])->required();
+  app.add_option("OUT", files[1])->required();
+  app.add_option("--index", index)->check(CLI::Range(0, 1 << 30));
+  if (!parse_command_line(app, arguments, kImportHelp, out)) {
+    return kExitOk;
   }
   const std::filesystem::path output = files[1];
   const std::vector<Shape> shapes = read_exchange_shapes(files[0]);

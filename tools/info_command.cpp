@@ -41,20 +41,14 @@ std::string ratio(double value) {
 }  // namespace
 
 int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kInfoHelp;
+  std::string scene_path;
+  CLI::App app("dnurbs info");
+  const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
+  if (!parse_command_line(app, arguments, kInfoHelp, out)) {
     return kExitOk;
   }
-  std::optional<std::string> scene_file;
-  for (const auto& argument : arguments) {
-    if (argument.starts_with("-")) {
-      throw UsageError("unknown option " + argument);
-    }
-    if (scene_file) {
-      throw UsageError("expected one scene file, got " + *scene_file + " and " + argument);
-    }
-    scene_file = argument;
-  }
+  const std::optional<std::string> scene_file =
+      *scene_option ? std::optional<std::string>(scene_path) : std::nullopt;
   const Scene scene = scene_file ? read_scene_file(*scene_file)
                                  : parse_scene_json(kDefaultSceneJson, "<default demo>");
   const SceneSimulation simulation(scene);

@@ -1,6 +1,9 @@
 #include "tools/make_command.h"
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
+#include <string>
 #include <variant>
 
 #include <nlohmann/json.hpp>
@@ -33,24 +36,31 @@ recipe as JSON):
 every kind: --split PU,PV (surfaces) or P (curves): split every knot span into equal parts;
             --translate X,Y,Z: move the shape.
 
-Lines and planes have their control points at the Greville abscissae: they are linear in their
-parameters and at rest under the D-NURBS energy with a clamped border. A VALUE is JSON (a number,
-an array, an object, a quoted string), or comma-separated numbers, or else a file name.
+Every shape is at rest as made in a scene model with "rest_shape": "initial" (the energy of the
+change from it). Lines and planes have their control points at the Greville abscissae: they are
+linear in their parameters and at rest under the D-NURBS energy measured from zero too when
+their border is clamped. A VALUE is JSON (a number, an array, an object, a quoted string), or
+comma-separated numbers, or else a file name.
 
 exit codes: 0 ok, 1 a value a generator rejects or an unwritable file, 2 bad command line
 )";
 
 namespace {
 
-// "--control-points" -> "control_points"
-std::string recipe_key(const std::string& flag) {
-  std::string key = flag.substr(2);
-  for (char& c : key) {
-    if (c == '-') {
-      c = '_';
-    }
-  }
-  return key;
+// The keys of the recipe kinds (io/shape_recipe.h), each an option: "--control-points" is the
+// key "control_points". A key that does not apply to the kind is refused by the recipe reader,
+// naming the kind.
+constexpr std::array<const char*, 20> kRecipeKeys = {
+    "start",        "end",          "control_points", "degree",  "size",
+    "origin",       "domain",       "radius",         "height",  "profile_control_points",
+    "major_radius", "minor_radius", "periodic",       "profile", "angle_degrees",
+    "curve",        "direction",    "sections",       "split",   "translate"};
+
+// "control_points" -> "--control-points"
+std::string recipe_flag(const std::string& key) {
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
 }
 
 // A flag's value as JSON: JSON itself, comma-separated numbers as an array, otherwise a string.
@@ -71,36 +81,24 @@ nlohmann::json recipe_value(const std::string& text) {
 }  // namespace
 
 int make_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kMakeHelp;
+  std::string kind;
+  std::string output;
+  CLI::App app("dnurbs make");
+  app.add_option("KIND", kind)->required();
+  app.add_option("OUT", output)->required();
+  std::array<std::string, kRecipeKeys.size()> values;
+  std::array<const CLI::Option*, kRecipeKeys.size()> options{};
+  for (size_t k = 0; k < kRecipeKeys.size(); ++k) {
+    options[k] = app.add_option(recipe_flag(kRecipeKeys[k]), values[k]);
+  }
+  if (!parse_command_line(app, arguments, kMakeHelp, out)) {
     return kExitOk;
   }
-  nlohmann::json recipe = nlohmann::json::object();
-  std::string output;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument.starts_with("--") && argument.size() > 2) {
-      const std::string key = recipe_key(argument);
-      if (key == "kind" || recipe.contains(key)) {
-        throw UsageError("option " + argument +
-                         (key == "kind" ? " is the first argument" : " given twice"));
-      }
-      recipe[key] = recipe_value(flag_value(arguments, i));
-    } else if (argument.starts_with("-") && argument.size() > 1) {
-      throw UsageError("unknown option " + argument);
-    } else if (!recipe.contains("kind")) {
-      recipe["kind"] = argument;
-    } else if (output.empty()) {
-      output = argument;
-    } else {
-      throw UsageError("unexpected argument " + argument + " (KIND and one output file)");
+  nlohmann::json recipe = {{"kind", kind}};
+  for (size_t k = 0; k < kRecipeKeys.size(); ++k) {
+    if (options[k]->count() > 0) {
+      recipe[kRecipeKeys[k]] = recipe_value(values[k]);
     }
-  }
-  if (!recipe.contains("kind")) {
-    throw UsageError("missing the KIND of shape");
-  }
-  if (output.empty()) {
-    throw UsageError("missing the output file OUT.json");
   }
   const SceneReader reader("command line", std::filesystem::current_path());
   const Shape shape = make_shape(reader, recipe, "");

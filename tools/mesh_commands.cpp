@@ -218,10 +218,6 @@ void render_energy_png(const std::string& program, const std::filesystem::path& 
 }
 
 int export_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kExportHelp;
-    return kExitOk;
-  }
   std::vector<std::string> files;
   int resolution = 0;
   double radius = 0.0;
@@ -229,42 +225,22 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   double max_angle_degrees = 0.0;
   bool compare = false;
   bool nurbs = false;
-  UpAxis up = UpAxis::kZ;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument == "--resolution") {
-      resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 4096);
-    } else if (argument == "--up-axis") {
-      const std::string& axis = flag_value(arguments, i);
-      if (axis != "z" && axis != "y") {
-        throw UsageError("--up-axis: expected z or y, got " + axis);
-      }
-      up = axis == "y" ? UpAxis::kY : UpAxis::kZ;
-    } else if (argument == "--radius") {
-      radius = parse_double(flag_value(arguments, i), "--radius");
-      if (!(radius > 0.0)) {
-        throw UsageError("--radius: expected a positive number, got " + arguments[i]);
-      }
-    } else if (argument == "--max-error") {
-      max_error = parse_double(flag_value(arguments, i), "--max-error");
-      if (!(max_error > 0.0) || !std::isfinite(max_error)) {
-        throw UsageError("--max-error: expected a finite number > 0, got " + arguments[i]);
-      }
-    } else if (argument == "--max-angle") {
-      max_angle_degrees = parse_double(flag_value(arguments, i), "--max-angle");
-      if (!(max_angle_degrees > 0.0) || !(max_angle_degrees <= 180.0)) {
-        throw UsageError("--max-angle: expected degrees in (0, 180], got " + arguments[i]);
-      }
-    } else if (argument == "--compare") {
-      compare = true;
-    } else if (argument == "--nurbs") {
-      nurbs = true;
-    } else if (argument.starts_with("-") && argument.size() > 1) {
-      throw UsageError("unknown option " + argument);
-    } else {
-      files.push_back(argument);
-    }
+  std::string axis = "z";
+  CLI::App app("dnurbs export");
+  app.add_option("FILES", files)->required();
+  const std::vector<CLI::Option*> mesh_options = {
+      app.add_option("--resolution", resolution)->check(CLI::Range(3, 4096)),
+      app.add_option("--up-axis", axis)->check(CLI::IsMember({"z", "y"})),
+      app.add_option("--radius", radius)->check(finite_number() & CLI::PositiveNumber),
+      app.add_option("--max-error", max_error)->check(finite_number() & CLI::PositiveNumber),
+      app.add_option("--max-angle", max_angle_degrees)
+          ->check(finite_number() & CLI::PositiveNumber & CLI::Range(0.0, 180.0)),
+      app.add_flag("--compare", compare)};
+  app.add_flag("--nurbs", nurbs);
+  if (!parse_command_line(app, arguments, kExportHelp, out)) {
+    return kExitOk;
   }
+  const UpAxis up = axis == "y" ? UpAxis::kY : UpAxis::kZ;
   if ((resolution > 0) + (max_error > 0.0) + (max_angle_degrees > 0.0) > 1) {
     throw UsageError("--resolution, --max-error and --max-angle exclude each other");
   }
@@ -275,7 +251,8 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
     throw UsageError("--nurbs applies to a .obj file (STEP and IGES files are always NURBS)");
   }
   if (files.size() >= 2 && (nurbs || cad_format_of(files.back()))) {
-    if (arguments.size() != files.size() + (nurbs ? 1 : 0)) {
+    if (std::any_of(mesh_options.begin(), mesh_options.end(),
+                    [](const CLI::Option* option) { return option->count() > 0; })) {
       throw UsageError("the mesh options do not apply to NURBS in a STEP, IGES or OBJ file");
     }
     std::vector<Shape> shapes;
@@ -321,20 +298,12 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
 
 int preview_command(const std::vector<std::string>& arguments, const std::string& program,
                     std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kPreviewHelp;
+  std::vector<std::string> files(2);
+  CLI::App app("dnurbs preview");
+  app.add_option("MESH", files[0])->required();
+  app.add_option("PNG", files[1])->required();
+  if (!parse_command_line(app, arguments, kPreviewHelp, out)) {
     return kExitOk;
-  }
-  std::vector<std::string> files;
-  for (const auto& argument : arguments) {
-    if (argument.starts_with("-") && argument.size() > 1) {
-      throw UsageError("unknown option " + argument);
-    }
-    files.push_back(argument);
-  }
-  if (files.size() != 2) {
-    throw UsageError("expected MESH.obj and OUT.png, got " + std::to_string(files.size()) +
-                     " file arguments");
   }
   render_preview_png(program, files[0], files[1]);
   out << "wrote " << files[1] << " (shaded preview of " << files[0] << ")\n";

@@ -227,36 +227,30 @@ const char* const kDefaultSceneJson = R"json({
 
 int run_command(const std::vector<std::string>& arguments, const std::string& program,
                 std::ostream& out, std::ostream& err) {
-  if (wants_help(arguments)) {
-    out << kRunHelp;
+  SceneRunOptions options;
+  std::string scene_path;
+  std::string output_directory = options.output_directory.string();
+  std::string resume;
+  bool no_preview = false;
+  bool quiet = false;
+  CLI::App app("dnurbs run");
+  const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
+  app.add_option("--out", output_directory);
+  const CLI::Option* resume_option = app.add_option("--resume", resume);
+  app.add_option("--resolution", options.resolution)->check(CLI::Range(3, 1024));
+  app.add_option("--stop-after", options.stop_after)->check(CLI::Range(0, 100000000));
+  app.add_flag("--no-preview", no_preview);
+  app.add_flag("--quiet", quiet);
+  if (!parse_command_line(app, arguments, kRunHelp, out)) {
     return kExitOk;
   }
-  SceneRunOptions options;
-  std::optional<std::string> scene_file;
-  bool preview = true;
-  bool quiet = false;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument == "--out") {
-      options.output_directory = flag_value(arguments, i);
-    } else if (argument == "--resume") {
-      options.resume = flag_value(arguments, i);
-    } else if (argument == "--resolution") {
-      options.resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 1024);
-    } else if (argument == "--stop-after") {
-      options.stop_after = parse_int(flag_value(arguments, i), "--stop-after", 0, 100000000);
-    } else if (argument == "--no-preview") {
-      preview = false;
-    } else if (argument == "--quiet") {
-      quiet = true;
-    } else if (argument.starts_with("-")) {
-      throw UsageError("unknown option " + argument);
-    } else if (scene_file) {
-      throw UsageError("expected one scene file, got " + *scene_file + " and " + argument);
-    } else {
-      scene_file = argument;
-    }
+  options.output_directory = output_directory;
+  if (*resume_option) {
+    options.resume = resume;
   }
+  const std::optional<std::string> scene_file =
+      *scene_option ? std::optional<std::string>(scene_path) : std::nullopt;
+  const bool preview = !no_preview;
 
   std::ostream silent(nullptr);  // no buffer: what is written to it goes nowhere
   std::ostream& shown = quiet ? silent : out;

@@ -62,37 +62,28 @@ std::filesystem::path default_web_root() {
 }  // namespace
 
 int serve_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  if (wants_help(arguments)) {
-    out << kServeHelp;
+  std::string scene_path;
+  SculptServerOptions server;
+  std::string web_root = default_web_root().string();
+  SculptSessionOptions session_options;
+  std::string output_directory = session_options.output_directory.string();
+  int port = server.port;
+  CLI::App app("dnurbs serve");
+  const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
+  app.add_option("--port", port)->check(CLI::Range(0, 65535));
+  app.add_option("--host", server.host);
+  app.add_option("--out", output_directory);
+  app.add_option("--rate", server.steps_per_second)->check(CLI::Range(1, 1000));
+  app.add_option("--resolution", session_options.resolution)->check(CLI::Range(3, 256));
+  app.add_option("--web", web_root);
+  if (!parse_command_line(app, arguments, kServeHelp, out)) {
     return kExitOk;
   }
-  std::optional<std::string> scene_file;
-  SculptServerOptions server;
-  server.web_root = default_web_root();
-  SculptSessionOptions session_options;
-  for (size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& argument = arguments[i];
-    if (argument == "--port") {
-      server.port =
-          static_cast<unsigned short>(parse_int(flag_value(arguments, i), "--port", 0, 65535));
-    } else if (argument == "--host") {
-      server.host = flag_value(arguments, i);
-    } else if (argument == "--out") {
-      session_options.output_directory = flag_value(arguments, i);
-    } else if (argument == "--rate") {
-      server.steps_per_second = parse_int(flag_value(arguments, i), "--rate", 1, 1000);
-    } else if (argument == "--resolution") {
-      session_options.resolution = parse_int(flag_value(arguments, i), "--resolution", 3, 256);
-    } else if (argument == "--web") {
-      server.web_root = flag_value(arguments, i);
-    } else if (argument.starts_with("-")) {
-      throw UsageError("unknown option " + argument);
-    } else if (scene_file) {
-      throw UsageError("expected one scene file, got " + *scene_file + " and " + argument);
-    } else {
-      scene_file = argument;
-    }
-  }
+  server.port = static_cast<unsigned short>(port);
+  server.web_root = web_root;
+  session_options.output_directory = output_directory;
+  const std::optional<std::string> scene_file =
+      *scene_option ? std::optional<std::string>(scene_path) : std::nullopt;
   Scene scene = scene_file ? read_scene_file(*scene_file) : sculpting_demo_scene();
   SculptSession session(std::move(scene), session_options);
   SculptServer listener(session, server);
