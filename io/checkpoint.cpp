@@ -79,6 +79,10 @@ std::string checkpoint_to_json(const Checkpoint& checkpoint) {
   text += ",\n";
   append_vector(text, "a",
                 checkpoint.accelerations_valid ? checkpoint.accelerations : Eigen::VectorXd());
+  if (checkpoint.rest_coordinates.size() > 0) {
+    text += ",\n";
+    append_vector(text, "rest", checkpoint.rest_coordinates);
+  }
   text += "\n}\n";
   return text;
 }
@@ -121,6 +125,9 @@ Checkpoint parse_checkpoint_json(const std::string& text, const std::string& sou
   checkpoint.velocities = read_vector(root, source, "qd");
   checkpoint.accelerations_valid = valid.get<bool>();
   checkpoint.accelerations = read_vector(root, source, "a");
+  if (root.contains("rest")) {
+    checkpoint.rest_coordinates = read_vector(root, source, "rest");
+  }
   if (checkpoint.accelerations_valid &&
       checkpoint.accelerations.size() != checkpoint.velocities.size()) {
     fail(source, "a", "expected as many accelerations as velocities (qd)");

@@ -20,6 +20,9 @@ struct Checkpoint {
   Eigen::VectorXd velocities;   ///< qd (System::velocities)
   bool accelerations_valid = false;
   Eigen::VectorXd accelerations;  ///< System::accelerations (empty when not valid)
+  /// System::flowing_rest_coordinates: the rest shapes that yield (plastic flow), stacked;
+  /// empty when none does (then the file has no "rest" key).
+  Eigen::VectorXd rest_coordinates;
 };
 
 /// The checkpoint as JSON text (doubles with 17 significant digits: they read back exactly).

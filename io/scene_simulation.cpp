@@ -306,11 +306,13 @@ void SceneSimulation::step() {
   const bool valid = system_.accelerations_valid();
   const Eigen::VectorXd a = valid ? system_.accelerations() : Eigen::VectorXd();
   const double time = system_.time();
+  const Eigen::VectorXd rest = system_.flowing_rest_coordinates();  // plastic rest shapes
   auto restore_last = [&]() {
     system_.set_state(q, qd, time);
     if (valid) {
       system_.set_accelerations(a);
     }
+    system_.restore_flowing_rest_coordinates(rest);
   };
   const double dt = scene_.integrator.dt;
   try {
@@ -519,6 +521,7 @@ Checkpoint SceneSimulation::checkpoint() const {
   if (c.accelerations_valid) {
     c.accelerations = system_.accelerations();
   }
+  c.rest_coordinates = system_.flowing_rest_coordinates();
   return c;
 }
 
@@ -549,6 +552,11 @@ void SceneSimulation::restore(const Checkpoint& checkpoint, const std::string& s
   if (checkpoint.velocities.size() != system_.velocity_count()) {
     throw make_error(source, ": qd: expected ", system_.velocity_count(), " velocities, got ",
                      checkpoint.velocities.size());
+  }
+  try {
+    system_.restore_flowing_rest_coordinates(checkpoint.rest_coordinates);
+  } catch (const Error& error) {
+    throw make_error(source, ": rest: ", error.what());
   }
   system_.set_state(checkpoint.coordinates, checkpoint.velocities, checkpoint.time);
   if (checkpoint.accelerations_valid) {

@@ -85,7 +85,8 @@ class SceneSimulation {
   int steps_done() const { return steps_; }
 
   /// Advances one integrator.dt. Throws SimulationDiverged (state back to the last good one)
-  /// if the integrator rejects the step or its energy fails the energy budget.
+  /// if the integrator rejects the step or its energy fails the energy budget (plastic rest
+  /// shapes back too).
   void step();
 
   SceneSample sample() const;

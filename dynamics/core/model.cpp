@@ -125,6 +125,15 @@ std::optional<Shape> Model::exact_shape(ConstVectorRef /*q*/) const {
   return std::nullopt;
 }
 
+int Model::flow_rest_shape(ConstVectorRef /*q*/, double /*dt*/) {
+  return 0;
+}
+
+void Model::restore_flowing_rest_coordinates(ConstVectorRef rest) {
+  throw make_error("rest coordinates: ", rest.size(),
+                   " given, but this model's rest shape does not flow (it has none to restore)");
+}
+
 void Model::fix_point(int i) {
   const int nodes = coordinate_count() / 3;
   if (i < 0 || i >= nodes) {

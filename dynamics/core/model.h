@@ -248,6 +248,17 @@ class Model {
   /// and returns how many were frozen. Default: throws Error (not supported).
   virtual int freeze_outside(const SculptedRegion& region, int margin);
 
+  // Plastic flow (dynamics/core/plastic_flow.h) -----------------------------------------------
+  /// After a step of dt to q (coordinate_count()): moves the rest shape of a model whose rest
+  /// shape yields and returns the number of nodes that yielded; 0 for other models (default).
+  virtual int flow_rest_shape(ConstVectorRef q, double dt);
+  /// The rest coordinates of a model whose rest shape yields (a checkpoint keeps them); empty
+  /// for other models (the default).
+  virtual Eigen::VectorXd flowing_rest_coordinates() const { return {}; }
+  /// Sets them back (the size of flowing_rest_coordinates(), finite); throws Error naming the
+  /// size otherwise.
+  virtual void restore_flowing_rest_coordinates(ConstVectorRef rest);
+
  protected:
   Model() = default;
   Model(const Model&) = default;

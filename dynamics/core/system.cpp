@@ -171,6 +171,49 @@ void System::fix_border(int model) {
   refresh_fixed();
 }
 
+int System::flow_rest_shapes(double dt) {
+  int yielded = 0;
+  for (int i = 0; i < model_count(); ++i) {
+    Model& m = *models_[static_cast<size_t>(i)];
+    yielded += m.flow_rest_shape(
+        coordinates_.segment(coordinate_offsets_[static_cast<size_t>(i)], m.coordinate_count()),
+        dt);
+  }
+  return yielded;
+}
+
+Eigen::VectorXd System::flowing_rest_coordinates() const {
+  std::vector<Eigen::VectorXd> parts;
+  Eigen::Index size = 0;
+  for (const auto& m : models_) {
+    parts.push_back(m->flowing_rest_coordinates());
+    size += parts.back().size();
+  }
+  Eigen::VectorXd stacked(size);
+  Eigen::Index offset = 0;
+  for (const auto& part : parts) {
+    stacked.segment(offset, part.size()) = part;
+    offset += part.size();
+  }
+  return stacked;
+}
+
+void System::restore_flowing_rest_coordinates(ConstVectorRef rest) {
+  const Eigen::Index expected = flowing_rest_coordinates().size();
+  if (rest.size() != expected) {
+    throw make_error("rest coordinates: expected ", expected,
+                     " (the models whose rest shape yields), got ", rest.size());
+  }
+  Eigen::Index offset = 0;
+  for (const auto& m : models_) {
+    const Eigen::Index size = m->flowing_rest_coordinates().size();
+    if (size > 0) {
+      m->restore_flowing_rest_coordinates(rest.segment(offset, size));
+      offset += size;
+    }
+  }
+}
+
 void System::refresh_fixed() {
   fixed_.clear();
   for (int i = 0; i < model_count(); ++i) {
@@ -272,11 +315,15 @@ void System::commit_step(Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorX
     throw make_error("committed state sizes ", q.size(), ", ", qd.size(), ", ", a.size(),
                      " differ from the system's ", coordinate_count(), " and ", velocity_count());
   }
+  const double dt = time - time_;
   coordinates_.swap(q);
   velocities_.swap(qd);
   accelerations_.swap(a);
   accelerations_valid_ = true;
   time_ = time;
+  if (dt > 0.0) {
+    flow_rest_shapes(dt);  // plastic rest shapes yield towards the new state
+  }
 }
 
 Eigen::Vector3d System::position(int i, const Eigen::Vector2d& u) const {

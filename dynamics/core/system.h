@@ -70,7 +70,8 @@ class System {
   bool accelerations_valid() const { return accelerations_valid_; }
   void set_accelerations(ConstVectorRef a);
   /// For integrators: swaps in a new state (q, qd, a at `time`) without copying; the arguments
-  /// receive the old vectors. Sizes must match (checked); finiteness is the caller's duty.
+  /// receive the old vectors. Sizes must match (checked); finiteness is the caller's duty. Then
+  /// plastic rest shapes yield towards the new state (flow_rest_shapes, dt = time - the old time).
   void commit_step(Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& a, double time);
 
   /// x(u) of model i at the current state.
@@ -146,6 +147,16 @@ class System {
   double kinetic_energy() const;
   /// Sum of the models' elastic energies at the current state.
   double potential_energy() const;
+
+  // Plastic flow (dynamics/core/plastic_flow.h) ---------------------------------------------
+  /// Model::flow_rest_shape of every model at the current state, after a step of dt (commit_step
+  /// calls it after each step); returns the nodes that yielded, over all models.
+  int flow_rest_shapes(double dt);
+  /// Every model's Model::flowing_rest_coordinates, stacked in model order (empty when no
+  /// model's rest shape yields); a checkpoint keeps them. restore sets them back and throws Error
+  /// naming the size when it is not that of flowing_rest_coordinates().
+  Eigen::VectorXd flowing_rest_coordinates() const;
+  void restore_flowing_rest_coordinates(ConstVectorRef rest);
 
   /// Changes whenever models are added or points fixed (integrators refactor when it changes);
   /// unique across the process's systems (a copy keeps its original's until it changes).

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "dnurbs/dynamics/core/material_function.h"
+#include "dnurbs/dynamics/core/plastic_flow.h"
 #include "dnurbs/dynamics/core/quadrature_assembly.h"
 #include "dnurbs/dynamics/dnurbs/rational_control_net_model.h"
 #include "dnurbs/nurbs/jacobian.h"
@@ -58,6 +59,10 @@ struct DNurbsSettings {
   /// (the default): from zero, the energy of Terzopoulos 2003, eq. 1.20, under which tension
   /// shrinks every curved shape.
   bool initial_shape_at_rest = false;
+  /// A rest shape that yields (dynamics/core/plastic_flow.h): after every step each control
+  /// point's rest position flows towards its position beyond the yield distance, so a push leaves
+  /// a dent. Implies a rest shape (the initial shape unless set_rest_shape moves it).
+  std::optional<PlasticFlow> plastic_flow;
 };
 
 /// A D-NURBS curve or surface as a Model. Use DNurbsCurve or DNurbsSurface to build one.
@@ -103,6 +108,17 @@ class DNurbsModel : public RationalControlNetModel {
   void set_rest_shape(ConstVectorRef q_rest);
   /// True once a rest shape is set (by set_rest_shape or DNurbsSettings::initial_shape_at_rest).
   bool has_rest_shape() const { return !rest_derivatives_.empty(); }
+  /// The rest shape's coordinates (coordinate_count(); empty without a rest shape).
+  const Eigen::VectorXd& rest_coordinates() const { return rest_coordinates_; }
+  /// Makes the rest shape yield by `flow` (checked; a rest shape is set from the initial
+  /// coordinates when there is none), or stop yielding (nullopt).
+  void set_plastic_flow(const std::optional<PlasticFlow>& flow);
+  const std::optional<PlasticFlow>& plastic_flow() const { return plastic_flow_; }
+  /// With plastic flow: the rule on every control point's position (free weights keep their
+  /// rest values), the rest shape moved when a point yielded; returns the points that yielded.
+  int flow_rest_shape(ConstVectorRef q, double dt) override;
+  Eigen::VectorXd flowing_rest_coordinates() const override;
+  void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
   /// Fixed weights with a rest shape: K q_r; null otherwise.
   const Eigen::VectorXd* internal_force_offset() const override {
     return has_rest_shape() && mode_ == WeightMode::kFixed ? &rest_force_ : nullptr;
@@ -207,6 +223,8 @@ class DNurbsModel : public RationalControlNetModel {
   static constexpr int kRestStride = 3 * (kQuantityCount - 1);
   std::vector<double> rest_derivatives_;
   Eigen::VectorXd rest_force_;
+  Eigen::VectorXd rest_coordinates_;
+  std::optional<PlasticFlow> plastic_flow_;
 };
 
 template <typename PointVisitor, typename ElementVisitor>

@@ -485,6 +485,7 @@ void DNurbsModel::set_rest_shape(ConstVectorRef q_rest) {
       },
       [](int /*element*/) {});
   rest_derivatives_ = std::move(rest);
+  rest_coordinates_ = q_rest;
   if (mode_ == WeightMode::kFixed) {
     // f_int = -K (q - q_r) and E(q) expanded about q0 with gradient K (q0 - q_r)
     rest_force_ = expanded_.stiffness * q_rest;

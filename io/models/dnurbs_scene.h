@@ -89,9 +89,10 @@ struct SceneDNurbsModel : SceneModelSpec {
   /// Reads the keys of a model of type Spec::kType.
   static std::unique_ptr<SceneModelSpec> read(const SceneReader& reader, const JsonValue& model,
                                               const std::string& path) {
-    check_model_keys(reader, model, path, Spec::kType,
-                     {"shape", "shape_file", "make", "fit", "weights", "quadrature_points",
-                      "minimum_weight", "weight_inertia", "weight_stiffness", "rest_shape"});
+    check_model_keys(
+        reader, model, path, Spec::kType,
+        {"shape", "shape_file", "make", "fit", "weights", "quadrature_points", "minimum_weight",
+         "weight_inertia", "weight_stiffness", "rest_shape", "plastic"});
     auto spec = std::make_unique<Spec>();
     std::vector<const char*> keys = {"mass_density", "damping_density"};
     for (const auto& key : Spec::kStiffnessKeys) {

@@ -34,7 +34,9 @@ void write_scene_shape(const std::optional<Shape>& shape, const std::string& sha
 
 /// "weights" (fixed or free), "quadrature_points", "minimum_weight" and the optional
 /// "weight_inertia" and "weight_stiffness" (>= 0; absent: scale-aware) and "rest_shape"
-/// ("none" or "initial": DNurbsSettings::initial_shape_at_rest; written only when "initial")
+/// ("none" or "initial": DNurbsSettings::initial_shape_at_rest; written only when "initial") and
+/// "plastic" ({"yield": >= 0, "rate": > 0}: DNurbsSettings::plastic_flow, refused with
+/// "rest_shape": "none")
 void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
                           const std::string& path, DNurbsSettings& settings);
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model);

@@ -218,7 +218,24 @@ void bind_rest_shape(py::class_<DNurbsClass, Model>& model_class) {
           "|x^alpha(q) - x^alpha(q_rest)|^2, so q_rest is at rest. Copies in a System are "
           "unaffected.")
       .def_property_readonly("has_rest_shape", &DNurbsClass::has_rest_shape,
-                             "True once a rest shape is set.");
+                             "True once a rest shape is set.")
+      .def_property_readonly(
+          "rest_coordinates",
+          [](const DNurbsClass& self) { return array_from_vector(self.rest_coordinates()); },
+          "The rest shape's coordinates (n,), empty without a rest shape.")
+      .def(
+          "set_plastic_flow",
+          [](DNurbsClass& self, const py::object& yield, double rate) {
+            if (yield.is_none()) {
+              self.set_plastic_flow(std::nullopt);
+            } else {
+              self.set_plastic_flow(PlasticFlow{yield.cast<double>(), rate});
+            }
+          },
+          py::arg("yield_distance"), py::arg("rate") = 1.0,
+          "Makes the rest shape yield after every step (dynamics/core/plastic_flow.h): a control "
+          "point's rest position flows towards its position beyond yield_distance, at rate; "
+          "None stops the flow. Sets the rest shape to the initial one when there is none.");
 }
 
 }  // namespace

@@ -21,6 +21,7 @@ py::dict checkpoint_dict(const Checkpoint& checkpoint) {
   result["velocities"] = array_from_vector(checkpoint.velocities);
   result["accelerations_valid"] = checkpoint.accelerations_valid;
   result["accelerations"] = array_from_vector(checkpoint.accelerations);
+  result["rest_coordinates"] = array_from_vector(checkpoint.rest_coordinates);
   return result;
 }
 

@@ -69,6 +69,9 @@ Checkpoint checkpoint_from_dict(const py::dict& values) {
   checkpoint.velocities = vector_from_array(entry("velocities"), "velocities");
   checkpoint.accelerations_valid = entry("accelerations_valid").cast<bool>();
   checkpoint.accelerations = vector_from_array(entry("accelerations"), "accelerations");
+  if (values.contains("rest_coordinates")) {
+    checkpoint.rest_coordinates = vector_from_array(values["rest_coordinates"], "rest_coordinates");
+  }
   return checkpoint;
 }
 

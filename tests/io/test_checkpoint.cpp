@@ -23,6 +23,7 @@
 #include "dnurbs/io/scene_forces.h"
 #include "dnurbs/io/scene_runner.h"
 #include "dnurbs/io/scene_simulation.h"
+#include "tests/common/error_message.h"
 
 namespace dnurbs {
 namespace {
@@ -152,6 +153,46 @@ TEST(ResumedRun, EndsInTheSameStateAsAnUninterruptedRun) {
     // difference is exactly 0; 1e-12 is the tolerance the format promises
     EXPECT_LE(resume_difference(scene, 17, steps), 1e-12) << name;
   }
+}
+
+// A clamped sheet with a plastic rest shape, pushed: its rest shape is part of the state.
+const char* const kPlasticSheetScene = R"({"models": [{"name": "clay", "type": "dnurbs_surface",
+    "make": {"kind": "plane", "size": [2, 2], "control_points": [6, 6]},
+    "plastic": {"yield": 0.01, "rate": 4},
+    "material": {"damping_density": 3, "a10": 1, "a01": 1, "b20": 0.1, "b11": 0.1, "b02": 0.1},
+    "boundary": {"clamp_border": true}}],
+  "forces": [{"type": "point", "model": "clay", "at": [1, 1], "force": [0, 0, -3]}],
+  "integrator": {"dt": 0.05, "scheme": "implicit-euler"}, "run": {"steps": 30}})";
+
+TEST(ResumedRun, APlasticRestShapeIsKeptByTheCheckpoint) {
+  const Scene scene = parse_scene_json(kPlasticSheetScene);
+  // The rest shape yields in the run, and a resumed run repeats it bit for bit
+  EXPECT_EQ(resume_difference(scene, 13, 30), 0.0);
+  SceneSimulation simulation(scene);
+  for (int i = 0; i < 13; ++i) {
+    simulation.step();
+  }
+  Checkpoint checkpoint = parse_checkpoint_json(checkpoint_to_json(simulation.checkpoint()));
+  EXPECT_EQ(checkpoint.rest_coordinates.size(), 108);
+  EXPECT_TRUE(same_bits(checkpoint.rest_coordinates, simulation.checkpoint().rest_coordinates));
+  EXPECT_GT((checkpoint.rest_coordinates - simulation.system().model(0).initial_coordinates())
+                .lpNorm<Eigen::Infinity>(),
+            1e-3);
+  // Without its rest shape the checkpoint would resume into a different state: refused
+  checkpoint.rest_coordinates.resize(0);
+  SceneSimulation resumed(scene);
+  EXPECT_THAT(testing::error_message([&] { resumed.restore(checkpoint, "cp.json"); }),
+              HasSubstr("cp.json: rest: rest coordinates: expected 108"));
+  // The scene keys are read, written back and checked with their path
+  EXPECT_NE(scene_to_json(scene).find(R"("plastic": {)"), std::string::npos);
+  std::string bad = kPlasticSheetScene;
+  bad.replace(bad.find(R"("yield": 0.01)"), 13, R"("yield": -1)");
+  EXPECT_THAT(testing::error_message([&] { parse_scene_json(bad); }),
+              HasSubstr("models[0].plastic.yield"));
+  bad = kPlasticSheetScene;
+  bad.replace(bad.find(R"("plastic")"), 9, R"("rest_shape": "none", "plastic")");
+  EXPECT_THAT(testing::error_message([&] { parse_scene_json(bad); }),
+              HasSubstr("a plastic rest shape needs \"rest_shape\": \"initial\""));
 }
 
 TEST(ResumedRun, CheckpointOfAnotherSceneIsRejected) {

@@ -263,3 +263,34 @@ def test_a_sphere_with_its_initial_shape_as_rest_feels_no_force():
     assert np.abs(curve.internal_force(curve.initial_coordinates())).max() < 1e-13
     curve.set_rest_shape(curve.initial_coordinates() + 0.1)  # a translated circle: no force
     assert np.abs(curve.internal_force(curve.initial_coordinates())).max() < 1e-13
+    np.testing.assert_array_equal(curve.rest_coordinates, curve.initial_coordinates() + 0.1)
+    curve.set_plastic_flow(0.5, rate=2.0)  # keeps the rest shape it has
+    np.testing.assert_array_equal(curve.rest_coordinates, curve.initial_coordinates() + 0.1)
+
+
+def test_a_plastic_rest_shape_keeps_a_dent():
+    knots = dnurbs.KnotVector.clamped_uniform(3, 6)
+    u, v = np.meshgrid(dnurbs.greville_abscissae(knots), dnurbs.greville_abscissae(knots),
+                       indexing="ij")
+    sheet = dnurbs.NurbsSurface(knots, knots,
+                                np.stack([u, v, np.zeros_like(u)], axis=-1).reshape(-1, 3))
+    model = dnurbs.DNurbsSurface(sheet, damping_density=3.0, a10=1.0, a01=1.0, b20=0.1,
+                                 b11=0.1, b02=0.1)
+    assert model.rest_coordinates.size == 0
+    model.set_plastic_flow(0.01, rate=4.0)
+    np.testing.assert_array_equal(model.rest_coordinates, model.initial_coordinates())
+    system = dnurbs.System()
+    system.add_model(model)
+    system.fix_border(0)
+    system.add_point_force(0, [0.5, 0.5], [0, 0, -3])
+    integrator = dnurbs.Integrator()
+    for _ in range(30):
+        integrator.step(system, 0.05)
+    system.clear_forces()
+    for _ in range(300):
+        integrator.step(system, 0.5)
+    # The centre stays dented after the release; without the flow it springs back
+    assert system.position(0, [0.5, 0.5])[2] < -1e-3
+    model.set_plastic_flow(None)
+    with pytest.raises(dnurbs.Error, match="plastic yield -1"):
+        model.set_plastic_flow(-1.0)

@@ -176,48 +176,6 @@ TEST(DnurbsCommand, HelpForProgramAndEachSubcommandExitsZero) {
   }
 }
 
-// Every subcommand parses its options with CLI11: a bad command line exits 2 with a message
-// that names the option and the value.
-TEST(DnurbsCommand, BadCommandLinesAreRefusedNamingTheOptionAndValue) {
-  const std::string circle = kData + "/circle.json";
-  const auto usage_error = [](const std::string& arguments) {
-    const Result result = run(arguments);
-    EXPECT_EQ(result.exit_code, 2) << arguments;
-    return result.err;
-  };
-  EXPECT_THAT(usage_error("eval " + circle + " --at 0.5 --derivatives 99"),
-              HasSubstr("--derivatives: Value 99 not in range 0 to 15"));
-  EXPECT_THAT(usage_error("run --resolution 2"),
-              HasSubstr("--resolution: Value 2 not in range 3 to 1024"));
-  EXPECT_THAT(usage_error("run --stop-after x"), HasSubstr("--stop-after"));
-  EXPECT_THAT(usage_error("eval " + circle + " --at nan"), HasSubstr("expected a finite number"));
-  EXPECT_THAT(usage_error("export " + circle + " out.obj --max-error nan"),
-              HasSubstr("--max-error: expected a finite number, got nan"));
-  EXPECT_THAT(usage_error("export " + circle + " out.obj --max-angle 200"),
-              HasSubstr("--max-angle: Value 200 not in range 0"));
-  EXPECT_THAT(usage_error("export " + circle + " out.obj --up-axis x"),
-              HasSubstr("--up-axis: x not in {z,y}"));
-  EXPECT_THAT(usage_error("make plane out.json --size 1,1 --size 2,2"), HasSubstr("--size"));
-  EXPECT_THAT(usage_error("info --bogus"), HasSubstr("not expected: --bogus"));
-  EXPECT_THAT(usage_error("run a.json b.json"), HasSubstr("not expected: b.json"));
-  EXPECT_THAT(usage_error("import part.step"), HasSubstr("OUT is required"));
-  EXPECT_THAT(usage_error("run --out"), HasSubstr("--out"));
-  EXPECT_THAT(usage_error("fit cube points.xyz"),
-              HasSubstr("SHAPE: cube not in {superquadric,surface}"));
-  EXPECT_THAT(usage_error("serve --port 70000"),
-              HasSubstr("--port: Value 70000 not in range 0 to 65535"));
-}
-
-TEST(DnurbsCommand, NegativeNumbersAreValuesNotOptions) {
-  const auto folder = fresh_directory("dnurbs_negative_values");
-  const std::string out = (folder / "rod.json").string();
-  const Result made = run("make line " + out + " --start -1,-2,0 --end -3,0,0");
-  ASSERT_EQ(made.exit_code, 0) << made.err;
-  const Json rod = Json::parse(read_text(out));
-  EXPECT_EQ(rod["control_points"].front(), Json::parse("[-1, -2, 0]"));
-  EXPECT_EQ(rod["control_points"].back(), Json::parse("[-3, 0, 0]"));
-}
-
 TEST(DnurbsCommand, VersionPrintsTheProjectVersion) {
   for (const std::string option : {"--version", "version"}) {
     const Result version = run(option);

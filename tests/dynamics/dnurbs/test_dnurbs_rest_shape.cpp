@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <string>
 #include <utility>
@@ -260,6 +261,52 @@ TEST(DNurbsRestShape, PushedSphereReturnsToItsRestShape) {
       EXPECT_GT(distance, 0.1);
     }
   }
+}
+
+// The centre height of a clamped sheet pushed down for 2 s and then released until it settles,
+// with a plastic rest shape of the given yield distance.
+struct DentHeights {
+  double loaded = 0.0;   // at the end of the push
+  double settled = 0.0;  // after the release
+};
+DentHeights pushed_and_released(double yield) {
+  DNurbsSettings settings;
+  settings.plastic_flow = PlasticFlow{yield, 5.0};
+  const NurbsSurface sheet = greville_plane({2, 2}, {7, 7}, {3, 3});
+  const DNurbsSurface model(sheet, plate_material(), settings);
+  System system(model);
+  system.fix_border(0);
+  const Eigen::Vector2d centre(1.0, 1.0);
+  system.add_force(0, point_force(centre, Eigen::Vector3d(0.0, 0.0, -4.0)));
+  IntegratorSettings integrator_settings;
+  integrator_settings.scheme = IntegratorScheme::kImplicitEuler;
+  Integrator integrator(integrator_settings);
+  for (int step = 0; step < 40; ++step) {
+    integrator.step(system, 0.05);
+  }
+  DentHeights heights;
+  heights.loaded = system.position(0, centre).z();
+  system.clear_forces();
+  for (int step = 0; step < 400; ++step) {
+    integrator.step(system, 0.5);
+  }
+  heights.settled = system.position(0, centre).z();
+  return heights;
+}
+
+TEST(DNurbsRestShape, APushBeyondTheYieldDistanceLeavesADent) {
+  const DentHeights plastic = pushed_and_released(0.01);
+  const DentHeights elastic = pushed_and_released(10.0);  // never reached: fully elastic
+  std::cout << "centre height: plastic " << plastic.loaded << " loaded, " << plastic.settled
+            << " settled; elastic " << elastic.loaded << " loaded, " << elastic.settled
+            << " settled\n";
+  EXPECT_LT(plastic.loaded, -0.05);
+  // The dent stays, smaller than under the load (the elastic part springs back)
+  EXPECT_LT(plastic.settled, 0.2 * plastic.loaded);
+  EXPECT_GT(plastic.settled, plastic.loaded);
+  // Without yielding the sheet returns flat, up to the decay of its slowest mode
+  EXPECT_LT(elastic.loaded, -0.05);
+  EXPECT_LT(std::abs(elastic.settled), 1e-8);
 }
 
 TEST(DNurbsRestShape, StaticEquilibriumKeepsTheRestShape) {

@@ -1,0 +1,42 @@
+#include "dnurbs/dynamics/core/plastic_flow.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dnurbs/core/error.h"
+
+namespace dnurbs {
+
+void check_plastic_flow(const PlasticFlow& flow) {
+  if (!(flow.yield >= 0.0) || !std::isfinite(flow.yield)) {
+    throw make_error("plastic yield ", flow.yield, " is not a non-negative finite distance");
+  }
+  if (!(flow.rate > 0.0) || !std::isfinite(flow.rate)) {
+    throw make_error("plastic rate ", flow.rate, " is not a positive finite number");
+  }
+}
+
+int flow_rest_positions(const PlasticFlow& flow, double dt, int stride,
+                        const Eigen::Ref<const Eigen::VectorXd>& q,
+                        Eigen::Ref<Eigen::VectorXd> rest) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    throw make_error("plastic flow: time step ", dt, " is not positive and finite");
+  }
+  if (stride < 3 || q.size() != rest.size() || q.size() % stride != 0) {
+    throw make_error("plastic flow: ", q.size(), " coordinates and ", rest.size(),
+                     " rest coordinates are not nodes of ", stride);
+  }
+  const double fraction = std::min(1.0, flow.rate * dt);
+  int yielded = 0;
+  for (Eigen::Index offset = 0; offset < q.size(); offset += stride) {
+    const Eigen::Vector3d strain = q.segment<3>(offset) - rest.segment<3>(offset);
+    const double distance = strain.norm();
+    if (distance > flow.yield) {
+      rest.segment<3>(offset) += (fraction * (distance - flow.yield) / distance) * strain;
+      ++yielded;
+    }
+  }
+  return yielded;
+}
+
+}  // namespace dnurbs
