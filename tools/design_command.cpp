@@ -68,7 +68,7 @@ int design_command(const std::vector<std::string>& arguments, std::ostream& out,
   const CLI::Option* algorithm_option =
       app.add_option("--algorithm", algorithm)->check(CLI::IsMember({"slsqp", "auglag_lbfgs"}));
   const CLI::Option* evaluations_option =
-      app.add_option("--max-evaluations", max_evaluations)->check(CLI::Range(1, 100000000));
+      app.add_option("--max-evaluations", max_evaluations)->transform(integer_in(1, 100000000));
   app.add_flag("--quiet", quiet);
   if (!parse_command_line(app, arguments, kDesignHelp, out)) {
     return kExitOk;

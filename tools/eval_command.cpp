@@ -112,7 +112,7 @@ int eval_command(const std::vector<std::string>& arguments, std::ostream& out) {
   CLI::App app("dnurbs eval");
   app.add_option("SHAPE", file)->required();
   app.add_option("--at", at_flags)->required()->allow_extra_args(false);
-  app.add_option("--derivatives", order)->check(CLI::Range(0, kMaxDerivativeOrder));
+  app.add_option("--derivatives", order)->transform(integer_in(0, kMaxDerivativeOrder));
   if (!parse_command_line(app, arguments, kEvalHelp, out)) {
     return kExitOk;
   }

@@ -143,12 +143,12 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out, st
   CLI::App app("dnurbs fit");
   app.add_option("SHAPE", shape)->required()->check(CLI::IsMember({"superquadric", "surface"}));
   app.add_option("POINTS", path)->required();
-  app.add_option("--degree", degree)->check(CLI::Range(1, 9));
-  app.add_option("--spans", spans)->check(CLI::Range(1, 1000));
+  app.add_option("--degree", degree)->transform(integer_in(1, 9));
+  app.add_option("--spans", spans)->transform(integer_in(1, 1000));
   app.add_option("--smoothness", smoothness)->check(finite_number());
   const CLI::Option* directory_option = app.add_option("--out", directory);
-  app.add_option("--resolution", output.resolution)->check(CLI::Range(3, 1024));
-  app.add_option("--iterations", iterations)->check(CLI::Range(1, 100000));
+  app.add_option("--resolution", output.resolution)->transform(integer_in(3, 1024));
+  app.add_option("--iterations", iterations)->transform(integer_in(1, 100000));
   app.add_flag("--quiet", quiet);
   if (!parse_command_line(app, arguments, kFitHelp, out)) {
     return kExitOk;

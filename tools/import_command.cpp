@@ -28,7 +28,7 @@ int import_command(const std::vector<std::string>& arguments, std::ostream& out)
   CLI::App app("dnurbs import");
   app.add_option("PART", files[0])->required();
   app.add_option("OUT", files[1])->required();
-  app.add_option("--index", index)->check(CLI::Range(0, 1 << 30));
+  app.add_option("--index", index)->transform(integer_in(0, 1 << 30));
   if (!parse_command_line(app, arguments, kImportHelp, out)) {
     return kExitOk;
   }

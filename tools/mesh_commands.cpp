@@ -229,12 +229,11 @@ int export_command(const std::vector<std::string>& arguments, std::ostream& out)
   CLI::App app("dnurbs export");
   app.add_option("FILES", files)->required();
   const std::vector<CLI::Option*> mesh_options = {
-      app.add_option("--resolution", resolution)->check(CLI::Range(3, 4096)),
+      app.add_option("--resolution", resolution)->transform(integer_in(3, 4096)),
       app.add_option("--up-axis", axis)->check(CLI::IsMember({"z", "y"})),
-      app.add_option("--radius", radius)->check(finite_number() & CLI::PositiveNumber),
-      app.add_option("--max-error", max_error)->check(finite_number() & CLI::PositiveNumber),
-      app.add_option("--max-angle", max_angle_degrees)
-          ->check(finite_number() & CLI::PositiveNumber & CLI::Range(0.0, 180.0)),
+      app.add_option("--radius", radius)->check(positive_number()),
+      app.add_option("--max-error", max_error)->check(positive_number()),
+      app.add_option("--max-angle", max_angle_degrees)->check(positive_number(180.0)),
       app.add_flag("--compare", compare)};
   app.add_flag("--nurbs", nurbs);
   if (!parse_command_line(app, arguments, kExportHelp, out)) {

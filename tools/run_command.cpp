@@ -237,8 +237,8 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
   const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
   app.add_option("--out", output_directory);
   const CLI::Option* resume_option = app.add_option("--resume", resume);
-  app.add_option("--resolution", options.resolution)->check(CLI::Range(3, 1024));
-  app.add_option("--stop-after", options.stop_after)->check(CLI::Range(0, 100000000));
+  app.add_option("--resolution", options.resolution)->transform(integer_in(3, 1024));
+  app.add_option("--stop-after", options.stop_after)->transform(integer_in(0, 100000000));
   app.add_flag("--no-preview", no_preview);
   app.add_flag("--quiet", quiet);
   if (!parse_command_line(app, arguments, kRunHelp, out)) {

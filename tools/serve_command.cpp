@@ -70,11 +70,11 @@ int serve_command(const std::vector<std::string>& arguments, std::ostream& out) 
   int port = server.port;
   CLI::App app("dnurbs serve");
   const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
-  app.add_option("--port", port)->check(CLI::Range(0, 65535));
+  app.add_option("--port", port)->transform(integer_in(0, 65535));
   app.add_option("--host", server.host);
   app.add_option("--out", output_directory);
-  app.add_option("--rate", server.steps_per_second)->check(CLI::Range(1, 1000));
-  app.add_option("--resolution", session_options.resolution)->check(CLI::Range(3, 256));
+  app.add_option("--rate", server.steps_per_second)->transform(integer_in(1, 1000));
+  app.add_option("--resolution", session_options.resolution)->transform(integer_in(3, 256));
   app.add_option("--web", web_root);
   if (!parse_command_line(app, arguments, kServeHelp, out)) {
     return kExitOk;
