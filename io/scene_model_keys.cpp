@@ -64,4 +64,48 @@ JsonOut fit_json(const SceneFit& fit, bool dnurbs) {
   return json;
 }
 
+std::optional<PlasticFlow> read_plastic_flow(const SceneReader& reader, const JsonValue& model,
+                                             const std::string& path) {
+  const JsonValue* plastic = reader.find(model, "plastic");
+  if (plastic == nullptr) {
+    return std::nullopt;
+  }
+  const std::string plastic_path = join_json_path(path, "plastic");
+  reader.object(*plastic, plastic_path, {"yield", "rate"});
+  PlasticFlow flow;
+  reader.number_key(*plastic, plastic_path, "yield", flow.yield, 0.0, false);
+  reader.number_key(*plastic, plastic_path, "rate", flow.rate, 0.0, true);
+  return flow;
+}
+
+JsonOut plastic_flow_json(const PlasticFlow& flow) {
+  return {{"yield", flow.yield}, {"rate", flow.rate}};
+}
+
+void read_rest_shape_keys(const SceneReader& reader, const JsonValue& model,
+                          const std::string& path, bool& initial_shape_at_rest,
+                          std::optional<PlasticFlow>& plastic_flow) {
+  const JsonValue* rest = reader.find(model, "rest_shape");
+  if (rest != nullptr) {
+    initial_shape_at_rest =
+        reader.choice(*rest, join_json_path(path, "rest_shape"), {"none", "initial"}) == "initial";
+  }
+  plastic_flow = read_plastic_flow(reader, model, path);
+  if (plastic_flow && rest != nullptr && !initial_shape_at_rest) {
+    // The yield rule moves a rest shape: "none" leaves it none to move
+    reader.fail(join_json_path(path, "plastic"),
+                "a plastic rest shape needs \"rest_shape\": \"initial\"");
+  }
+}
+
+void write_rest_shape_keys(bool initial_shape_at_rest,
+                           const std::optional<PlasticFlow>& plastic_flow, JsonOut& model) {
+  if (initial_shape_at_rest) {
+    model["rest_shape"] = "initial";
+  }
+  if (plastic_flow) {
+    model["plastic"] = plastic_flow_json(*plastic_flow);
+  }
+}
+
 }  // namespace dnurbs

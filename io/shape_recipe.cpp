@@ -4,6 +4,7 @@
 #include <functional>
 #include <numbers>
 #include <optional>
+#include <string_view>
 #include <variant>
 
 #include "dnurbs/core/error.h"
@@ -318,6 +319,25 @@ Shape make_nested_shape(const SceneReader& reader, const JsonValue& recipe, cons
 
 const std::vector<const char*>& shape_recipe_kinds() {
   return recipe_kinds();
+}
+
+const std::vector<const char*>& shape_recipe_keys() {
+  static const std::vector<const char*> keys = [] {
+    std::vector<const char*> names;
+    const auto add = [&](const char* key) {
+      if (std::none_of(names.begin(), names.end(),
+                       [&](const char* name) { return std::string_view(name) == key; })) {
+        names.push_back(key);
+      }
+    };
+    for (const RecipeKind& kind : recipe_table()) {
+      std::for_each(kind.keys.begin(), kind.keys.end(), add);
+    }
+    add("split");
+    add("translate");
+    return names;
+  }();
+  return keys;
 }
 
 Shape make_shape(const SceneReader& reader, const JsonValue& recipe, const std::string& path) {

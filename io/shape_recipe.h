@@ -16,6 +16,10 @@ namespace dnurbs {
 /// torus, revolve, extrude, loft.
 const std::vector<const char*>& shape_recipe_kinds();
 
+/// Every key a recipe of some kind takes besides "kind" (the kinds' own keys, then "split" and
+/// "translate"), each once, in the order the kinds list them.
+const std::vector<const char*>& shape_recipe_keys();
+
 /// Builds the shape of `recipe` (a JSON object at `path`). Every key is checked; curves inside a
 /// recipe (revolve's "profile", extrude's "curve", loft's "sections") are a nurbs_curve object in
 /// the shape format, a shape file name (resolved by `reader`) or a nested recipe. The common keys

@@ -41,14 +41,12 @@ std::string ratio(double value) {
 }  // namespace
 
 int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  std::string scene_path;
+  std::optional<std::string> scene_file;  // absent: the built-in default scene
   CLI::App app("dnurbs info");
-  const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
+  app.add_option("SCENE", scene_file);
   if (!parse_command_line(app, arguments, kInfoHelp, out)) {
     return kExitOk;
   }
-  const std::optional<std::string> scene_file =
-      *scene_option ? std::optional<std::string>(scene_path) : std::nullopt;
   const Scene scene = scene_file ? read_scene_file(*scene_file)
                                  : parse_scene_json(kDefaultSceneJson, "<default demo>");
   const SceneSimulation simulation(scene);

@@ -1,10 +1,10 @@
 #include "tools/make_command.h"
 
 #include <algorithm>
-#include <array>
 #include <filesystem>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -47,15 +47,6 @@ exit codes: 0 ok, 1 a value a generator rejects or an unwritable file, 2 bad com
 
 namespace {
 
-// The keys of the recipe kinds (io/shape_recipe.h), each an option: "--control-points" is the
-// key "control_points". A key that does not apply to the kind is refused by the recipe reader,
-// naming the kind.
-constexpr std::array<const char*, 20> kRecipeKeys = {
-    "start",        "end",          "control_points", "degree",  "size",
-    "origin",       "domain",       "radius",         "height",  "profile_control_points",
-    "major_radius", "minor_radius", "periodic",       "profile", "angle_degrees",
-    "curve",        "direction",    "sections",       "split",   "translate"};
-
 // "control_points" -> "--control-points"
 std::string recipe_flag(const std::string& key) {
   std::string flag = "--" + key;
@@ -86,18 +77,22 @@ int make_command(const std::vector<std::string>& arguments, std::ostream& out) {
   CLI::App app("dnurbs make");
   app.add_option("KIND", kind)->required();
   app.add_option("OUT", output)->required();
-  std::array<std::string, kRecipeKeys.size()> values;
-  std::array<const CLI::Option*, kRecipeKeys.size()> options{};
-  for (size_t k = 0; k < kRecipeKeys.size(); ++k) {
-    options[k] = app.add_option(recipe_flag(kRecipeKeys[k]), values[k]);
+  // Every key of the recipe kinds (io/shape_recipe.h) is an option: "--control-points" is the
+  // key "control_points". A key that does not apply to the kind is refused by the recipe
+  // reader, naming the kind.
+  const std::vector<const char*>& keys = shape_recipe_keys();
+  std::vector<std::string> values(keys.size());
+  std::vector<const CLI::Option*> options(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) {
+    options[k] = app.add_option(recipe_flag(keys[k]), values[k]);
   }
   if (!parse_command_line(app, arguments, kMakeHelp, out)) {
     return kExitOk;
   }
   nlohmann::json recipe = {{"kind", kind}};
-  for (size_t k = 0; k < kRecipeKeys.size(); ++k) {
+  for (size_t k = 0; k < keys.size(); ++k) {
     if (options[k]->count() > 0) {
-      recipe[kRecipeKeys[k]] = recipe_value(values[k]);
+      recipe[keys[k]] = recipe_value(values[k]);
     }
   }
   const SceneReader reader("command line", std::filesystem::current_path());

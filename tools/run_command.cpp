@@ -228,15 +228,15 @@ const char* const kDefaultSceneJson = R"json({
 int run_command(const std::vector<std::string>& arguments, const std::string& program,
                 std::ostream& out, std::ostream& err) {
   SceneRunOptions options;
-  std::string scene_path;
+  std::optional<std::string> scene_file;  // absent: the built-in default scene
   std::string output_directory = options.output_directory.string();
-  std::string resume;
+  std::optional<std::string> resume;
   bool no_preview = false;
   bool quiet = false;
   CLI::App app("dnurbs run");
-  const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
+  app.add_option("SCENE", scene_file);
   app.add_option("--out", output_directory);
-  const CLI::Option* resume_option = app.add_option("--resume", resume);
+  app.add_option("--resume", resume);
   app.add_option("--resolution", options.resolution)->transform(integer_in(3, 1024));
   app.add_option("--stop-after", options.stop_after)->transform(integer_in(0, 100000000));
   app.add_flag("--no-preview", no_preview);
@@ -245,11 +245,9 @@ int run_command(const std::vector<std::string>& arguments, const std::string& pr
     return kExitOk;
   }
   options.output_directory = output_directory;
-  if (*resume_option) {
-    options.resume = resume;
+  if (resume) {
+    options.resume = *resume;
   }
-  const std::optional<std::string> scene_file =
-      *scene_option ? std::optional<std::string>(scene_path) : std::nullopt;
   const bool preview = !no_preview;
 
   std::ostream silent(nullptr);  // no buffer: what is written to it goes nowhere

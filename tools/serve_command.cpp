@@ -62,14 +62,14 @@ std::filesystem::path default_web_root() {
 }  // namespace
 
 int serve_command(const std::vector<std::string>& arguments, std::ostream& out) {
-  std::string scene_path;
+  std::optional<std::string> scene_file;  // absent: the built-in default scene
   SculptServerOptions server;
   std::string web_root = default_web_root().string();
   SculptSessionOptions session_options;
   std::string output_directory = session_options.output_directory.string();
   int port = server.port;
   CLI::App app("dnurbs serve");
-  const CLI::Option* scene_option = app.add_option("SCENE", scene_path);
+  app.add_option("SCENE", scene_file);
   app.add_option("--port", port)->transform(integer_in(0, 65535));
   app.add_option("--host", server.host);
   app.add_option("--out", output_directory);
@@ -82,8 +82,6 @@ int serve_command(const std::vector<std::string>& arguments, std::ostream& out) 
   server.port = static_cast<unsigned short>(port);
   server.web_root = web_root;
   session_options.output_directory = output_directory;
-  const std::optional<std::string> scene_file =
-      *scene_option ? std::optional<std::string>(scene_path) : std::nullopt;
   Scene scene = scene_file ? read_scene_file(*scene_file) : sculpting_demo_scene();
   SculptSession session(std::move(scene), session_options);
   SculptServer listener(session, server);

@@ -39,4 +39,15 @@ int flow_rest_positions(const PlasticFlow& flow, double dt, int stride,
   return yielded;
 }
 
+void check_rest_coordinates(const Eigen::Ref<const Eigen::VectorXd>& rest, Eigen::Index size) {
+  if (rest.size() != size) {
+    throw make_error("rest coordinates: ", rest.size(), " given, the model has ", size);
+  }
+  for (Eigen::Index i = 0; i < size; ++i) {
+    if (!std::isfinite(rest[i])) {
+      throw make_error("rest coordinate ", i, " is ", rest[i], ", not finite");
+    }
+  }
+}
+
 }  // namespace dnurbs

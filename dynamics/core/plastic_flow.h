@@ -32,4 +32,8 @@ int flow_rest_positions(const PlasticFlow& flow, double dt, int stride,
                         const Eigen::Ref<const Eigen::VectorXd>& q,
                         Eigen::Ref<Eigen::VectorXd> rest);
 
+/// Throws Error naming the size or the first non-finite entry unless `rest` has `size` finite
+/// entries (rest coordinates given back to a model, Model::restore_flowing_rest_coordinates).
+void check_rest_coordinates(const Eigen::Ref<const Eigen::VectorXd>& rest, Eigen::Index size);
+
 }  // namespace dnurbs

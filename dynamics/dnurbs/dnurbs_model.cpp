@@ -47,40 +47,6 @@ DNurbsModel::DNurbsModel(const KnotVector& knots_u, const KnotVector* knots_v,
   set_plastic_flow(settings.plastic_flow);
 }
 
-void DNurbsModel::set_plastic_flow(const std::optional<PlasticFlow>& flow) {
-  if (flow) {
-    check_plastic_flow(*flow);
-    if (!has_rest_shape()) {
-      set_rest_shape(initial_coordinates_);
-    }
-  }
-  plastic_flow_ = flow;
-}
-
-int DNurbsModel::flow_rest_shape(ConstVectorRef q, double dt) {
-  if (!plastic_flow_) {
-    return 0;
-  }
-  check_coordinates(q);
-  Eigen::VectorXd rest = rest_coordinates_;
-  const int yielded = flow_rest_positions(*plastic_flow_, dt, per_control_point_, q, rest);
-  if (yielded > 0) {
-    set_rest_shape(rest);
-  }
-  return yielded;
-}
-
-Eigen::VectorXd DNurbsModel::flowing_rest_coordinates() const {
-  return plastic_flow_ ? rest_coordinates_ : Eigen::VectorXd();
-}
-
-void DNurbsModel::restore_flowing_rest_coordinates(ConstVectorRef rest) {
-  if (!plastic_flow_) {
-    Model::restore_flowing_rest_coordinates(rest);
-  }
-  set_rest_shape(rest);
-}
-
 void DNurbsModel::validate(const Eigen::VectorXd& weights, const DNurbsSettings& settings) const {
   if (!(minimum_weight_ > 0.0) || !std::isfinite(minimum_weight_)) {
     throw make_error("minimum weight ", minimum_weight_, " is not a positive finite number");

@@ -71,14 +71,8 @@ struct DNurbsSettings {
 /// stiffness coefficients k_alpha of the quantities alpha = 1..5 (x_u, x_v, x_uu, x_uv, x_vv):
 ///   K = integral sum_alpha k_alpha J_alpha^T J_alpha     (Terzopoulos 2003, eqs. 1.26 and 1.20).
 ///
-/// Rest shape: by default the energy is E(q) = (1/2) integral sum_alpha k_alpha |x^alpha(q)|^2
-/// (eq. 1.20), which is zero only for a shape shrunk to a point (tension) or a straight line /
-/// flat plane (rigidity). With a rest shape q_r (set_rest_shape) it is the energy of the change
-/// from that shape,
-///   E(q) = (1/2) integral sum_alpha k_alpha |x^alpha(q) - x^alpha(q_r)|^2,
-///   f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T (x^alpha(q) - x^alpha(q_r)),
-/// so q_r is at rest (f_int(q_r) = 0). The rest derivatives x^alpha(q_r) are stored at the Gauss
-/// points; with fixed weights f_int = -K (q - q_r) exactly, K unchanged.
+/// Rest shape and plastic flow: rational_control_net_model.h; the rest derivatives x^alpha(q_r)
+/// are stored at the Gauss points.
 class DNurbsModel : public RationalControlNetModel {
  public:
   int parametric_dimension() const override { return surface_ ? 2 : 1; }
@@ -101,28 +95,6 @@ class DNurbsModel : public RationalControlNetModel {
 
   /// The parametric measure of the domain (length of a curve's, area of a surface's).
   double parametric_measure() const;
-
-  /// Makes the shape at coordinates `q_rest` (coordinate_count() entries, finite; free weights
-  /// >= the minimum weight) the rest shape (class comment); with free weights the weight anchor
-  /// k_w then pulls towards its weights. Throws Error naming the entry otherwise.
-  void set_rest_shape(ConstVectorRef q_rest);
-  /// True once a rest shape is set (by set_rest_shape or DNurbsSettings::initial_shape_at_rest).
-  bool has_rest_shape() const { return !rest_derivatives_.empty(); }
-  /// The rest shape's coordinates (coordinate_count(); empty without a rest shape).
-  const Eigen::VectorXd& rest_coordinates() const { return rest_coordinates_; }
-  /// Makes the rest shape yield by `flow` (checked; a rest shape is set from the initial
-  /// coordinates when there is none), or stop yielding (nullopt).
-  void set_plastic_flow(const std::optional<PlasticFlow>& flow);
-  const std::optional<PlasticFlow>& plastic_flow() const { return plastic_flow_; }
-  /// With plastic flow: the rule on every control point's position (free weights keep their
-  /// rest values), the rest shape moved when a point yielded; returns the points that yielded.
-  int flow_rest_shape(ConstVectorRef q, double dt) override;
-  Eigen::VectorXd flowing_rest_coordinates() const override;
-  void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
-  /// Fixed weights with a rest shape: K q_r; null otherwise.
-  const Eigen::VectorXd* internal_force_offset() const override {
-    return has_rest_shape() && mode_ == WeightMode::kFixed ? &rest_force_ : nullptr;
-  }
 
  protected:
   /// `knots_v` is null for curves. `stiffness` holds k_alpha for alpha = 0..5 (k_0 unused).
@@ -167,8 +139,9 @@ class DNurbsModel : public RationalControlNetModel {
   Eigen::Vector2d quadrature_parameter(int element, int point) const;
   // Assembly of the scalar (fixed weights) or block (free weights) matrices at q.
   void assemble_scalar(ModelMatrices& scalar) const override;
-  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 at the Gauss points.
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha - x^alpha_rest|^2 at the Gauss points.
   double quadrature_potential_energy(ConstVectorRef q) const override;
+  void store_rest_derivatives(ConstVectorRef q_rest) override;
   void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
   // Free weights, one pass over the Gauss points: M, D, K at q into `matrices` (block pattern,
   // weight regularization added) and, when `force` is non-null (coordinate_count() entries), the
@@ -218,13 +191,10 @@ class DNurbsModel : public RationalControlNetModel {
   DirectionQuadrature table_v_;
   std::vector<double> material_;
   AssemblyPattern pattern_;
-  // The rest shape (class comment): x^alpha(q_r) at every quadrature point (kRestStride doubles
-  // per point), empty without one; fixed weights: K q_r, added to f_int = -K q.
+  // The rest shape (rational_control_net_model.h): x^alpha(q_r) at every quadrature point
+  // (kRestStride doubles per point), empty without one.
   static constexpr int kRestStride = 3 * (kQuantityCount - 1);
   std::vector<double> rest_derivatives_;
-  Eigen::VectorXd rest_force_;
-  Eigen::VectorXd rest_coordinates_;
-  std::optional<PlasticFlow> plastic_flow_;
 };
 
 template <typename PointVisitor, typename ElementVisitor>

@@ -452,21 +452,7 @@ double DNurbsModel::quadrature_potential_energy(ConstVectorRef q) const {
   return energy;
 }
 
-void DNurbsModel::set_rest_shape(ConstVectorRef q_rest) {
-  check_coordinates(q_rest);
-  for (Eigen::Index i = 0; i < q_rest.size(); ++i) {
-    if (!std::isfinite(q_rest[i])) {
-      throw make_error("rest shape: coordinate ", i, " is ", q_rest[i], " (not finite)");
-    }
-  }
-  if (mode_ == WeightMode::kFree) {
-    for (int i = 0; i < control_point_count_; ++i) {
-      if (q_rest[4 * i + 3] < minimum_weight_) {
-        throw make_error("rest shape: weight ", i, " is ", q_rest[4 * i + 3],
-                         ", below the minimum weight ", minimum_weight_);
-      }
-    }
-  }
+void DNurbsModel::store_rest_derivatives(ConstVectorRef q_rest) {
   // x^alpha(q_r) at every Gauss point of the energy (rest_at)
   std::vector<double> rest(
       static_cast<size_t>(element_count() * points_per_element() * kRestStride), 0.0);
@@ -485,17 +471,6 @@ void DNurbsModel::set_rest_shape(ConstVectorRef q_rest) {
       },
       [](int /*element*/) {});
   rest_derivatives_ = std::move(rest);
-  rest_coordinates_ = q_rest;
-  if (mode_ == WeightMode::kFixed) {
-    // f_int = -K (q - q_r) and E(q) expanded about q0 with gradient K (q0 - q_r)
-    rest_force_ = expanded_.stiffness * q_rest;
-    reference_gradient_ = expanded_.stiffness * initial_coordinates_ - rest_force_;
-    reference_energy_ = quadrature_potential_energy(initial_coordinates_);
-  } else {
-    for (int i = 0; i < control_point_count_; ++i) {
-      anchor_weights_[i] = q_rest[4 * i + 3];
-    }
-  }
 }
 
 void DNurbsModel::add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const {

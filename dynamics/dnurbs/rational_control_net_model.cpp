@@ -356,4 +356,67 @@ Eigen::VectorXd RationalControlNetModel::weights(ConstVectorRef q) const {
   return result;
 }
 
+void RationalControlNetModel::set_rest_shape(ConstVectorRef q_rest) {
+  check_coordinates(q_rest);
+  for (Eigen::Index i = 0; i < q_rest.size(); ++i) {
+    if (!std::isfinite(q_rest[i])) {
+      throw make_error("rest shape: coordinate ", i, " is ", q_rest[i], " (not finite)");
+    }
+  }
+  if (mode_ == WeightMode::kFree) {
+    for (int i = 0; i < control_point_count_; ++i) {
+      if (q_rest[4 * i + 3] < minimum_weight_) {
+        throw make_error("rest shape: weight ", i, " is ", q_rest[4 * i + 3],
+                         ", below the minimum weight ", minimum_weight_);
+      }
+    }
+  }
+  store_rest_derivatives(q_rest);
+  rest_coordinates_ = q_rest;
+  if (mode_ == WeightMode::kFixed) {
+    // f_int = -K (q - q_r) and E(q) expanded about q0 with gradient K (q0 - q_r)
+    rest_force_ = expanded_.stiffness * q_rest;
+    reference_gradient_ = expanded_.stiffness * initial_coordinates_ - rest_force_;
+    reference_energy_ = quadrature_potential_energy(initial_coordinates_);
+  } else {
+    for (int i = 0; i < control_point_count_; ++i) {
+      anchor_weights_[i] = q_rest[4 * i + 3];
+    }
+  }
+}
+
+void RationalControlNetModel::set_plastic_flow(const std::optional<PlasticFlow>& flow) {
+  if (flow) {
+    check_plastic_flow(*flow);
+    if (!has_rest_shape()) {
+      set_rest_shape(initial_coordinates_);
+    }
+  }
+  plastic_flow_ = flow;
+}
+
+int RationalControlNetModel::flow_rest_shape(ConstVectorRef q, double dt) {
+  if (!plastic_flow_) {
+    return 0;
+  }
+  check_coordinates(q);
+  Eigen::VectorXd rest = rest_coordinates_;
+  const int yielded = flow_rest_positions(*plastic_flow_, dt, per_control_point_, q, rest);
+  if (yielded > 0) {
+    set_rest_shape(rest);
+  }
+  return yielded;
+}
+
+Eigen::VectorXd RationalControlNetModel::flowing_rest_coordinates() const {
+  return plastic_flow_ ? rest_coordinates_ : Eigen::VectorXd();
+}
+
+void RationalControlNetModel::restore_flowing_rest_coordinates(ConstVectorRef rest) {
+  if (!plastic_flow_) {
+    Model::restore_flowing_rest_coordinates(rest);
+  }
+  set_rest_shape(rest);
+}
+
 }  // namespace dnurbs

@@ -42,9 +42,21 @@
 // 0.1) still let flat sheets diverge within 20 steps; 10 and 2 keep every case of that test bounded
 // over 10,000 steps. Fixed weights and control points are unaffected.
 //
+// Rest shape. By default the energy is E(q) = (1/2) integral sum_alpha k_alpha |x^alpha(q)|^2
+// (Terzopoulos 2003, eq. 1.20), which is zero only for a shape shrunk to a point (tension) or a
+// straight line / flat plane (rigidity). With a rest shape q_r (set_rest_shape) it is the energy
+// of the change from that shape,
+//   E(q) = (1/2) integral sum_alpha k_alpha |x^alpha(q) - x^alpha(q_r)|^2,
+//   f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T (x^alpha(q) - x^alpha(q_r)),
+// so q_r is at rest (f_int(q_r) = 0): the derived model stores x^alpha(q_r) at its quadrature
+// points (store_rest_derivatives); with fixed weights f_int = -K (q - q_r) exactly, K unchanged.
+// A rest shape that yields (set_plastic_flow, dynamics/core/plastic_flow.h) moves q_r towards q
+// after every committed step, so a push leaves a dent.
+//
 // The derived model supplies its basis and quadrature: the rational basis at a parameter
-// (visit_rational_point), the scalar matrices (fixed weights) and the block matrices at q (free
-// weights); the point kinematics and point forces follow here from the rational basis.
+// (visit_rational_point), the scalar matrices (fixed weights), the block matrices at q (free
+// weights) and the rest derivatives; the point kinematics, point forces and the rest shape's
+// bookkeeping follow here.
 
 #include <functional>
 #include <optional>
@@ -53,6 +65,7 @@
 #include <Eigen/Core>
 
 #include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/plastic_flow.h"
 #include "dnurbs/nurbs/jacobian.h"
 
 namespace dnurbs {
@@ -147,6 +160,31 @@ class RationalControlNetModel : public Model {
   double weight_inertia() const { return weight_inertia_; }
   double weight_stiffness() const { return weight_stiffness_; }
 
+  // Rest shape and plastic flow (file comment) ------------------------------------------------
+  /// Makes the shape at coordinates `q_rest` (coordinate_count() entries, finite; free weights
+  /// >= the minimum weight) the rest shape; with free weights the weight anchor k_w then pulls
+  /// towards its weights. Throws Error naming the entry otherwise.
+  void set_rest_shape(ConstVectorRef q_rest);
+  /// True once a rest shape is set (set_rest_shape, the settings' initial_shape_at_rest or
+  /// plastic flow).
+  bool has_rest_shape() const { return rest_coordinates_.size() > 0; }
+  /// The rest shape's coordinates (coordinate_count(); empty without a rest shape).
+  const Eigen::VectorXd& rest_coordinates() const { return rest_coordinates_; }
+  /// Makes the rest shape yield by `flow` (checked; a rest shape is set from the initial
+  /// coordinates when there is none), or stop yielding (nullopt).
+  void set_plastic_flow(const std::optional<PlasticFlow>& flow);
+  const std::optional<PlasticFlow>& plastic_flow() const { return plastic_flow_; }
+  /// With plastic flow: the rule on every control point's position (free weights keep their
+  /// rest values), the rest shape moved when a point yielded; returns the points that yielded.
+  int flow_rest_shape(ConstVectorRef q, double dt) override;
+  /// rest_coordinates() with plastic flow, empty without.
+  Eigen::VectorXd flowing_rest_coordinates() const override;
+  void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
+  /// Fixed weights with a rest shape: K q_r; null otherwise.
+  const Eigen::VectorXd* internal_force_offset() const override {
+    return has_rest_shape() && mode_ == WeightMode::kFixed ? &rest_force_ : nullptr;
+  }
+
  protected:
   /// Throws nothing: the derived model validates its weights and settings.
   RationalControlNetModel(WeightMode mode, int control_point_count, double minimum_weight);
@@ -203,6 +241,8 @@ class RationalControlNetModel : public Model {
   // diagonal entry in it.
   SparseMatrix block_pattern_;
   std::vector<int> weight_diagonal_;
+  // Fixed weights with a rest shape: K q_r, added to f_int = -K q (file comment).
+  Eigen::VectorXd rest_force_;
 
  private:
   // Calls visit once with the rational basis at u of the control net at q (its weight columns
@@ -216,6 +256,12 @@ class RationalControlNetModel : public Model {
   virtual void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const = 0;
   // E(q) by quadrature of the rational Jacobians at q (any weight mode).
   virtual double quadrature_potential_energy(ConstVectorRef q) const = 0;
+  // Stores x^alpha(q_rest) of every quantity with stiffness at every quadrature point of the
+  // energy (set_rest_shape has checked q_rest), for the derived force and energy to subtract.
+  virtual void store_rest_derivatives(ConstVectorRef q_rest) = 0;
+
+  Eigen::VectorXd rest_coordinates_;
+  std::optional<PlasticFlow> plastic_flow_;
 };
 
 /// Jdot qd = (2 / W) (sum_a N_a wdot_a Pdot_a - Wdot xdot), the velocity-product part of a

@@ -184,6 +184,37 @@ void PdeSurface::build_matrices() {
   for (int a = 0; a < active_count; ++a) {
     rest_coordinates_.segment<3>(3 * a) = rest_.row(active_[static_cast<size_t>(a)]).transpose();
   }
+  initial_coordinates_ = rest_coordinates_;
+}
+
+void PdeSurface::set_plastic_flow(const std::optional<PlasticFlow>& flow) {
+  if (flow) {
+    check_plastic_flow(*flow);
+  }
+  plastic_flow_ = flow;
+}
+
+int PdeSurface::flow_rest_shape(ConstVectorRef q, double dt) {
+  if (!plastic_flow_) {
+    return 0;
+  }
+  if (q.size() != coordinate_count()) {
+    throw make_error("PDE surface coordinates have ", q.size(), " entries, not ",
+                     coordinate_count());
+  }
+  return flow_rest_positions(*plastic_flow_, dt, 3, q, rest_coordinates_);
+}
+
+Eigen::VectorXd PdeSurface::flowing_rest_coordinates() const {
+  return plastic_flow_ ? rest_coordinates_ : Eigen::VectorXd();
+}
+
+void PdeSurface::restore_flowing_rest_coordinates(ConstVectorRef rest) {
+  if (!plastic_flow_) {
+    Model::restore_flowing_rest_coordinates(rest);
+  }
+  check_rest_coordinates(rest, coordinate_count());
+  rest_coordinates_ = rest;
 }
 
 NodePositions PdeSurface::positions(ConstVectorRef q) const {
@@ -212,7 +243,7 @@ std::vector<int> PdeSurface::nodes_within(const Eigen::Vector3d& centre, double 
 }
 
 Eigen::VectorXd PdeSurface::initial_coordinates() const {
-  return rest_coordinates_;
+  return initial_coordinates_;
 }
 
 Eigen::Vector3d PdeSurface::position(ConstVectorRef q, const Eigen::Vector2d& u) const {

@@ -22,13 +22,20 @@
 // internal force is affine, f_int = -K (q - r0) + t. M, D and K are constant, so the integrators
 // factor once; the model does not claim the S (x) I_3 layout (kronecker_block_size() = 0) because
 // the integrators' Kronecker path assumes f_int = -K q.
+//
+// Plastic behaviour (Romero 2005, section 1: the tool's surfaces are to behave as clay as well as
+// elastically): with set_plastic_flow the rest positions r0 of the active nodes yield towards
+// their positions by the rule of dynamics/core/plastic_flow.h after every committed step, so a
+// push leaves a dent. The fixed nodes and the boundary normals keep the initial rest shape.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/plastic_flow.h"
 #include "dnurbs/dynamics/core/system.h"
 #include "dnurbs/dynamics/integrators/integrator.h"
 #include "dnurbs/surface/grid.h"
@@ -70,15 +77,24 @@ class PdeSurface : public Model {
   std::unique_ptr<Model> clone() const override { return std::make_unique<PdeSurface>(*this); }
 
   const Grid& grid() const { return grid_; }
+  /// The initial rest shape of every grid node (#nodes by 3; plastic flow moves
+  /// rest_coordinates(), not these).
   const NodePositions& rest_positions() const { return rest_; }
+  /// The active nodes' rest positions r0 (3 per active node): the initial ones until plastic
+  /// flow moves them.
+  const Eigen::VectorXd& rest_coordinates() const { return rest_coordinates_; }
+  /// Makes the rest positions of the active nodes yield by `flow` (checked) after every
+  /// committed step (header comment), or stop yielding (nullopt; the rest stays where it is).
+  void set_plastic_flow(const std::optional<PlasticFlow>& flow);
+  const std::optional<PlasticFlow>& plastic_flow() const { return plastic_flow_; }
   /// Grid indices of the active nodes, ascending; active slot a holds node active_nodes()[a].
   const std::vector<int>& active_nodes() const { return active_; }
   /// The active slot of a grid node, or -1 for a fixed node.
   int active_slot(int node) const { return slot_[static_cast<size_t>(node)]; }
   /// Every grid node's position at q (#nodes by 3): active from q, fixed at rest.
   NodePositions positions(ConstVectorRef q) const;
-  /// The active slots whose rest position is within `radius` of `centre` (the force region of
-  /// Romero 2005): pass them to control_point_force (dynamics/core/forces.h).
+  /// The active slots whose initial rest position is within `radius` of `centre` (the force region
+  /// of Romero 2005): pass them to control_point_force (dynamics/core/forces.h).
   std::vector<int> nodes_within(const Eigen::Vector3d& centre, double radius) const;
   /// The constant force t of the boundary tangents (3 per active node).
   const Eigen::VectorXd& tangent_force() const { return tangent_force_; }
@@ -105,6 +121,11 @@ class PdeSurface : public Model {
   /// Every grid node at q (fixed ones at rest) as the node mesh; the segments are ignored.
   TriangleMesh tessellate(ConstVectorRef q, const ModelTessellationSettings& settings,
                           std::string name) const override;
+  /// With plastic flow: the rule on every active node; returns the nodes that yielded.
+  int flow_rest_shape(ConstVectorRef q, double dt) override;
+  /// rest_coordinates() with plastic flow, empty without.
+  Eigen::VectorXd flowing_rest_coordinates() const override;
+  void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
 
  private:
   // Construction steps: the active nodes of the deformation regions, then M, D, K and the
@@ -117,7 +138,9 @@ class PdeSurface : public Model {
   NodePositions rest_;
   std::vector<int> active_;
   std::vector<int> slot_;
-  Eigen::VectorXd rest_coordinates_;
+  Eigen::VectorXd initial_coordinates_;  ///< the active nodes at the initial rest shape
+  Eigen::VectorXd rest_coordinates_;     ///< r0 of the active nodes (plastic flow moves them)
+  std::optional<PlasticFlow> plastic_flow_;
   Eigen::VectorXd tangent_force_;
   ModelMatrices matrices_;
 };

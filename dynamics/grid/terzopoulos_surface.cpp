@@ -122,14 +122,58 @@ TerzopoulosSurface::TerzopoulosSurface(const Grid& grid, const NodePositions& re
     throw make_error("normal threshold delta = ", settings.delta, " is not positive and finite");
   }
   operators_ = grid_difference_operators(grid);
-  rest_ = rest;
   initial_ = rest;
   const int n = grid.node_count();
   eta_ = packed(material.eta).replicate(n, 1);
   xi_ = packed(material.xi).replicate(n, 1);
+  set_rest(rest);
+}
+
+void TerzopoulosSurface::set_rest(const NodePositions& rest) {
+  rest_ = rest;
   const Geometry g = geometry(rest_);
   rest_metric_ = g.metric;
   rest_curvature_ = g.curvature;
+}
+
+void TerzopoulosSurface::set_plastic_flow(const std::optional<PlasticFlow>& flow) {
+  if (flow) {
+    check_plastic_flow(*flow);
+  }
+  plastic_flow_ = flow;
+}
+
+int TerzopoulosSurface::flow_rest_shape(ConstVectorRef q, double dt) {
+  if (!plastic_flow_) {
+    return 0;
+  }
+  if (q.size() != coordinate_count()) {
+    throw make_error("Terzopoulos surface coordinates have ", q.size(), " entries, not ",
+                     coordinate_count());
+  }
+  Eigen::VectorXd rest = flowing_rest_coordinates();
+  const int yielded = flow_rest_positions(*plastic_flow_, dt, 3, q, rest);
+  if (yielded > 0) {
+    set_rest(Eigen::Map<const RowNodes>(rest.data(), grid_.node_count(), 3));
+  }
+  return yielded;
+}
+
+Eigen::VectorXd TerzopoulosSurface::flowing_rest_coordinates() const {
+  if (!plastic_flow_) {
+    return {};
+  }
+  Eigen::VectorXd rest(coordinate_count());
+  Eigen::Map<RowNodes>(rest.data(), grid_.node_count(), 3) = rest_;
+  return rest;
+}
+
+void TerzopoulosSurface::restore_flowing_rest_coordinates(ConstVectorRef rest) {
+  if (!plastic_flow_) {
+    Model::restore_flowing_rest_coordinates(rest);
+  }
+  check_rest_coordinates(rest, coordinate_count());
+  set_rest(Eigen::Map<const RowNodes>(rest.data(), grid_.node_count(), 3));
 }
 
 void TerzopoulosSurface::check_node(int node) const {

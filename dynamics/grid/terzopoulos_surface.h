@@ -26,16 +26,23 @@
 //                D+_k), so that at the coefficients' own state n is exactly the unit normal
 //                where |B| > delta. K is not symmetric.
 //
+// Plastic behaviour (the inelastic surfaces of Terzopoulos & Fleischer, SIGGRAPH 1988, whose
+// reference tensors G0, B0 yield): with set_plastic_flow the rest positions r0 flow towards the
+// node positions by the rule of dynamics/core/plastic_flow.h after every committed step, and G0
+// and B0 are those of the moved rest shape, so a push leaves a dent.
+//
 // Stepping: through the common integrators (the Model contract; K(q) symmetrised is the
 // "stiffness", the exact force is -h^2 K(q) q evaluated at the step's state) or as in the seed
 // with the matrix from the current tensors (dynamics/integrators/semi_implicit_step.h).
 
 #include <array>
 #include <memory>
+#include <optional>
 
 #include <Eigen/Core>
 
 #include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/plastic_flow.h"
 #include "dnurbs/surface/grid.h"
 #include "dnurbs/surface/grid_difference_operators.h"
 
@@ -97,7 +104,12 @@ class TerzopoulosSurface : public Model {
   const Grid& grid() const { return grid_; }
   const TerzopoulosSettings& settings() const { return settings_; }
   const TerzopoulosMaterial& material() const { return material_; }
+  /// The rest shape r0 (#nodes by 3): the constructor's, moved by plastic flow.
   const NodePositions& rest_positions() const { return rest_; }
+  /// Makes the rest shape yield by `flow` (checked) after every committed step (header
+  /// comment), or stop yielding (nullopt; the rest stays where it is).
+  void set_plastic_flow(const std::optional<PlasticFlow>& flow);
+  const std::optional<PlasticFlow>& plastic_flow() const { return plastic_flow_; }
   /// The node positions of q (#nodes by 3).
   NodePositions positions(ConstVectorRef q) const;
   SurfaceTensors tensors(ConstVectorRef q) const;
@@ -146,6 +158,12 @@ class TerzopoulosSurface : public Model {
   /// `scalar`, else (x) I_3).
   void semi_implicit_matrices(ConstVectorRef q, bool scalar,
                               ModelMatrices& matrices) const override;
+  /// With plastic flow: the rule on every node, then G0 and B0 of the moved rest shape; returns
+  /// the nodes that yielded.
+  int flow_rest_shape(ConstVectorRef q, double dt) override;
+  /// The rest positions (3 per node, the order of q) with plastic flow, empty without.
+  Eigen::VectorXd flowing_rest_coordinates() const override;
+  void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
 
  private:
   struct Geometry;
@@ -158,6 +176,8 @@ class TerzopoulosSurface : public Model {
   Geometry geometry(const Eigen::Ref<const NodePositions>& r) const;
   ChristoffelCoefficients christoffel_coefficients(const Geometry& g) const;
   void check_node(int node) const;
+  /// r0 = rest, with G0 and B0 of it.
+  void set_rest(const NodePositions& rest);
 
   Grid grid_;
   TerzopoulosMaterial material_;
@@ -169,6 +189,7 @@ class TerzopoulosSurface : public Model {
   Eigen::MatrixX3d xi_;
   Eigen::MatrixX3d rest_metric_;
   Eigen::MatrixX3d rest_curvature_;
+  std::optional<PlasticFlow> plastic_flow_;
 };
 
 }  // namespace dnurbs

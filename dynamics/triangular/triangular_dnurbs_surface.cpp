@@ -129,6 +129,10 @@ TriangularDNurbsSurface::TriangularDNurbsSurface(const TriangularNurbsSurface& s
   // fixed weights or the block pattern of free ones ------------------------------------------
   build_coordinates(surface.control_points(), weights, pattern_.scalar, settings.weight_inertia,
                     0.0, settings.fix_weight_gauge);
+  if (settings.initial_shape_at_rest) {
+    set_rest_shape(initial_coordinates_);
+  }
+  set_plastic_flow(settings.plastic_flow);
 }
 
 std::unique_ptr<Model> TriangularDNurbsSurface::clone() const {
@@ -301,10 +305,14 @@ void TriangularDNurbsSurface::assemble_free(ConstVectorRef q, ModelMatrices& mat
 
 void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef force) const {
   if (mode_ == WeightMode::kFixed) {
+    // f_int = -K (q - q_r) = -K q + K q_r
     force.noalias() -= expanded_.stiffness * q;
+    if (has_rest_shape()) {
+      force += rest_force_;
+    }
     return;
   }
-  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T x^alpha.
+  // f_int = -dE/dq = -integral sum_alpha k_alpha J_alpha^T (x^alpha - x^alpha_rest).
   if (stiffness_order() == 0) {
     return;
   }
@@ -315,11 +323,41 @@ void TriangularDNurbsSurface::add_internal_force(ConstVectorRef q, VectorRef for
                    for (int alpha = 1; alpha < 6; ++alpha) {
                      if (has_stiffness_[static_cast<size_t>(alpha)]) {
                        const Eigen::Vector3d x = quadrature_->weight(p) * m[1 + alpha] *
-                                                 jacobian.point[static_cast<size_t>(alpha)];
+                                                 rest_difference(p, jacobian, alpha);
                        add_transposed_jacobian_times(values, jacobian, alpha, true, -x, force);
                      }
                    }
                  });
+}
+
+Eigen::Vector3d TriangularDNurbsSurface::rest_difference(int p,
+                                                         const TriangularRationalJacobian& jacobian,
+                                                         int alpha) const {
+  const Eigen::Vector3d& x = jacobian.point[static_cast<size_t>(alpha)];
+  if (rest_derivatives_.empty()) {
+    return x;
+  }
+  return x - Eigen::Map<const Eigen::Vector3d>(
+                 &rest_derivatives_[static_cast<size_t>(p * kRestStride + 3 * (alpha - 1))]);
+}
+
+void TriangularDNurbsSurface::store_rest_derivatives(ConstVectorRef q_rest) {
+  // x^alpha(q_r) at every quadrature point of the energy (rest_difference)
+  std::vector<double> rest(static_cast<size_t>(quadrature_->point_count() * kRestStride), 0.0);
+  if (stiffness_order() > 0) {
+    for_each_point(
+        control_net(q_rest), stiffness_order(), false,
+        [&](int p, const TriangularBasisValues&, const TriangularRationalJacobian& jacobian,
+            const std::vector<int>&) {
+          for (int alpha = 1; alpha < 6; ++alpha) {
+            if (has_stiffness_[static_cast<size_t>(alpha)]) {
+              Eigen::Vector3d::Map(&rest[static_cast<size_t>(p * kRestStride + 3 * (alpha - 1))]) =
+                  jacobian.point[static_cast<size_t>(alpha)];
+            }
+          }
+        });
+  }
+  rest_derivatives_ = std::move(rest);
 }
 
 double TriangularDNurbsSurface::quadrature_potential_energy(ConstVectorRef q) const {
@@ -335,8 +373,7 @@ double TriangularDNurbsSurface::quadrature_potential_energy(ConstVectorRef q) co
                    double density = 0.0;
                    for (int alpha = 1; alpha < 6; ++alpha) {
                      if (has_stiffness_[static_cast<size_t>(alpha)]) {
-                       density +=
-                           m[1 + alpha] * jacobian.point[static_cast<size_t>(alpha)].squaredNorm();
+                       density += m[1 + alpha] * rest_difference(p, jacobian, alpha).squaredNorm();
                      }
                    }
                    energy += 0.5 * quadrature_->weight(p) * density;

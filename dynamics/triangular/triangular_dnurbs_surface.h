@@ -28,6 +28,7 @@
 // supported plates of any Poisson ratio are reproduced.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,12 @@ struct TriangularDNurbsSettings {
   int tessellation_subdivisions = 0;
   double tessellation_max_error = 0.0;
   int tessellation_max_level = 20;
+  /// Measure the energy from the initial shape (set_rest_shape with the initial coordinates,
+  /// rational_control_net_model.h), so that the shape as built is at rest.
+  bool initial_shape_at_rest = false;
+  /// A rest shape that yields (dynamics/core/plastic_flow.h), so a push leaves a dent. Implies a
+  /// rest shape (the initial shape unless set_rest_shape moves it).
+  std::optional<PlasticFlow> plastic_flow;
 };
 
 /// A triangular D-NURBS surface as a Model. Control point a belongs to B-spline a of the basis
@@ -80,8 +87,9 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
   std::unique_ptr<Model> clone() const override;
   int parametric_dimension() const override { return 2; }
 
-  /// Fixed weights: -K q with the constant K; free weights: -integral sum_alpha k_alpha
-  /// J_alpha^T x^alpha by the Dunavant rule on every polynomial cell.
+  /// Fixed weights: -K (q - q_r) with the constant K (q_r = 0 without a rest shape); free
+  /// weights: -integral sum_alpha k_alpha J_alpha^T (x^alpha - x^alpha_rest) by the Dunavant
+  /// rule on every polynomial cell (rational_control_net_model.h, "Rest shape").
   void add_internal_force(ConstVectorRef q, VectorRef force) const override;
   /// g = -integral mu J^T Jdot qd (free weights; nothing for fixed weights).
   void add_inertial_force(ConstVectorRef q, ConstVectorRef qd, VectorRef force) const override;
@@ -151,8 +159,14 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
                    bool weight_columns, TriangularRationalJacobian& jacobian,
                    TriangularBasisValues& values) const;
   void assemble_scalar(ModelMatrices& scalar) const override;
-  // E = (1/2) integral sum_alpha k_alpha |x^alpha|^2 over the triangulated domain.
+  // E = (1/2) integral sum_alpha k_alpha |x^alpha - x^alpha_rest|^2 over the triangulated
+  // domain.
   double quadrature_potential_energy(ConstVectorRef q) const override;
+  void store_rest_derivatives(ConstVectorRef q_rest) override;
+  // x^alpha - x^alpha_rest of quantity alpha (1..5) at quadrature point p (x^alpha without a
+  // rest shape).
+  Eigen::Vector3d rest_difference(int p, const TriangularRationalJacobian& jacobian,
+                                  int alpha) const;
   void assemble_free(ConstVectorRef q, ModelMatrices& matrices) const override;
 
   TriangularNurbsSurface surface_;
@@ -162,6 +176,10 @@ class TriangularDNurbsSurface : public RationalControlNetModel {
   std::array<bool, 6> has_stiffness_{};
   std::vector<double> material_;
   AssemblyPattern pattern_;
+  // The rest shape: x^alpha(q_r), alpha = 1..5, at every quadrature point (kRestStride doubles
+  // per point, alpha 1 first), empty without one.
+  static constexpr int kRestStride = 15;
+  std::vector<double> rest_derivatives_;
 };
 
 }  // namespace dnurbs

@@ -122,22 +122,7 @@ void read_dnurbs_settings(const SceneReader& reader, const JsonValue& model,
       settings.*member = value;
     }
   }
-  if (const JsonValue* rest = reader.find(model, "rest_shape")) {
-    settings.initial_shape_at_rest =
-        reader.choice(*rest, join_json_path(path, "rest_shape"), {"none", "initial"}) == "initial";
-  }
-  if (const JsonValue* plastic = reader.find(model, "plastic")) {
-    // The yield rule of the rest shape (dynamics/core/plastic_flow.h); it needs a rest shape
-    const std::string plastic_path = join_json_path(path, "plastic");
-    reader.object(*plastic, plastic_path, {"yield", "rate"});
-    PlasticFlow flow;
-    reader.number_key(*plastic, plastic_path, "yield", flow.yield, 0.0, false);
-    reader.number_key(*plastic, plastic_path, "rate", flow.rate, 0.0, true);
-    if (reader.find(model, "rest_shape") != nullptr && !settings.initial_shape_at_rest) {
-      reader.fail(plastic_path, "a plastic rest shape needs \"rest_shape\": \"initial\"");
-    }
-    settings.plastic_flow = flow;
-  }
+  read_rest_shape_keys(reader, model, path, settings.initial_shape_at_rest, settings.plastic_flow);
 }
 
 void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
@@ -150,13 +135,7 @@ void write_dnurbs_settings(const DNurbsSettings& settings, JsonOut& model) {
   if (settings.weight_stiffness) {
     model["weight_stiffness"] = *settings.weight_stiffness;
   }
-  if (settings.initial_shape_at_rest) {
-    model["rest_shape"] = "initial";  // only tensor-product D-NURBS models take the key
-  }
-  if (settings.plastic_flow) {
-    model["plastic"] = {{"yield", settings.plastic_flow->yield},
-                        {"rate", settings.plastic_flow->rate}};
-  }
+  write_rest_shape_keys(settings.initial_shape_at_rest, settings.plastic_flow, model);
 }
 
 void read_dnurbs_surface_material(const SceneReader& reader, const JsonValue& model,

@@ -26,10 +26,16 @@ void ScenePdeSurface::write(JsonOut& model) const {
         {{"centre", json_array<3>(region.centre)}, {"radius", region.deformation_radius}});
   }
   model["regions"] = list;
+  if (plastic) {
+    model["plastic"] = plastic_flow_json(*plastic);
+  }
 }
 
 std::unique_ptr<Model> ScenePdeSurface::build() const {
-  return std::make_unique<PdeSurface>(grid.grid(), grid.rest_positions(), material, regions);
+  auto surface =
+      std::make_unique<PdeSurface>(grid.grid(), grid.rest_positions(), material, regions);
+  surface->set_plastic_flow(plastic);
+  return surface;
 }
 
 std::optional<std::pair<std::unique_ptr<SceneModelSpec>, std::string>>
@@ -46,9 +52,10 @@ ScenePdeSurface::naive_variant() const {
 std::unique_ptr<SceneModelSpec> read_pde_surface_scene(const SceneReader& reader,
                                                        const JsonValue& model,
                                                        const std::string& path) {
-  check_model_keys(reader, model, path, "pde_surface", {"grid", "regions"});
+  check_model_keys(reader, model, path, "pde_surface", {"grid", "regions", "plastic"});
   auto spec = std::make_unique<ScenePdeSurface>();
   spec->grid = read_scene_grid(reader, model, path);
+  spec->plastic = read_plastic_flow(reader, model, path);
   const JsonValue material = model_material(
       reader, model, path, {"b", "c", "d", "density", "damping", "su0", "su1", "sv0", "sv1"});
   const std::string material_path = join_json_path(path, "material");

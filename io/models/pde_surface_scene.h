@@ -3,6 +3,7 @@
 // (dynamics/grid/pde_surface.h) on a flat grid, with its deformation regions.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct ScenePdeSurface final : SceneModelSpec {
   SceneGrid grid;
   PdeSurfaceMaterial material;
   std::vector<DeformationRegion> regions;  ///< "regions": centre and radius
+  std::optional<PlasticFlow> plastic;      ///< "plastic": the rest shape yields
 
   std::unique_ptr<SceneModelSpec> clone() const override;
   std::string type() const override { return "pde_surface"; }

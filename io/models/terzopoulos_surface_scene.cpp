@@ -25,19 +25,26 @@ void SceneTerzopoulosSurface::write(JsonOut& model) const {
                        {"damping_density", material.damping_density},
                        {"eta", matrix2_json(material.eta)},
                        {"xi", matrix2_json(material.xi)}};
+  if (plastic) {
+    model["plastic"] = plastic_flow_json(*plastic);
+  }
 }
 
 std::unique_ptr<Model> SceneTerzopoulosSurface::build() const {
-  return std::make_unique<TerzopoulosSurface>(grid.grid(), grid.rest_positions(), material,
-                                              settings);
+  auto surface =
+      std::make_unique<TerzopoulosSurface>(grid.grid(), grid.rest_positions(), material, settings);
+  surface->set_plastic_flow(plastic);
+  return surface;
 }
 
 std::unique_ptr<SceneModelSpec> read_terzopoulos_surface_scene(const SceneReader& reader,
                                                                const JsonValue& model,
                                                                const std::string& path) {
-  check_model_keys(reader, model, path, "terzopoulos_surface", {"grid", "normal", "delta"});
+  check_model_keys(reader, model, path, "terzopoulos_surface",
+                   {"grid", "normal", "delta", "plastic"});
   auto spec = std::make_unique<SceneTerzopoulosSurface>();
   spec->grid = read_scene_grid(reader, model, path);
+  spec->plastic = read_plastic_flow(reader, model, path);
   if (const JsonValue* normal = reader.find(model, "normal")) {
     spec->settings.normal = reader.choice(*normal, join_json_path(path, "normal"),
                                           {"classic", "christoffel"}) == "classic"

@@ -3,6 +3,7 @@
 // surface (dynamics/grid/terzopoulos_surface.h) on a flat grid.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "dnurbs/dynamics/grid/terzopoulos_surface.h"
@@ -16,6 +17,7 @@ struct SceneTerzopoulosSurface final : SceneModelSpec {
   SceneGrid grid;
   TerzopoulosMaterial material;
   TerzopoulosSettings settings;
+  std::optional<PlasticFlow> plastic;  ///< "plastic": the rest shape yields
 
   std::unique_ptr<SceneModelSpec> clone() const override;
   std::string type() const override { return "terzopoulos_surface"; }

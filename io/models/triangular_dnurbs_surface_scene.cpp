@@ -160,6 +160,7 @@ void SceneTriangularDNurbsSurface::write(JsonOut& model) const {
   model["tessellation"] = {{"subdivisions", settings.tessellation_subdivisions},
                            {"max_error", settings.tessellation_max_error},
                            {"max_level", settings.tessellation_max_level}};
+  write_rest_shape_keys(settings.initial_shape_at_rest, settings.plastic_flow, model);
 }
 
 std::unique_ptr<Model> SceneTriangularDNurbsSurface::build() const {
@@ -174,9 +175,10 @@ SceneTriangularDNurbsSurface::naive_variant() const {
 std::unique_ptr<SceneModelSpec> read_triangular_dnurbs_surface_scene(const SceneReader& reader,
                                                                      const JsonValue& model,
                                                                      const std::string& path) {
-  check_model_keys(reader, model, path, "triangular_dnurbs_surface",
-                   {"shape", "shape_file", "domain", "weights", "minimum_weight", "weight_inertia",
-                    "quadrature_degree", "quadrature_subdivisions", "tessellation"});
+  check_model_keys(
+      reader, model, path, "triangular_dnurbs_surface",
+      {"shape", "shape_file", "domain", "weights", "minimum_weight", "weight_inertia",
+       "quadrature_degree", "quadrature_subdivisions", "tessellation", "rest_shape", "plastic"});
   auto spec = std::make_unique<SceneTriangularDNurbsSurface>();
   read_dnurbs_surface_material(reader, model, path, spec->material);
   TriangularDNurbsSettings& settings = spec->settings;
@@ -193,6 +195,7 @@ std::unique_ptr<SceneModelSpec> read_triangular_dnurbs_surface_scene(const Scene
   reader.integer_key(model, path, "quadrature_subdivisions", settings.quadrature_subdivisions, 0,
                      64);
   read_tessellation(reader, model, path, settings);
+  read_rest_shape_keys(reader, model, path, settings.initial_shape_at_rest, settings.plastic_flow);
   read_shape(reader, model, path, *spec);
   return spec;
 }

@@ -26,6 +26,24 @@ Eigen::Matrix2d matrix2(const py::object& value, const std::string& name) {
   return matrix_from_array(value, name, 2, 2);
 }
 
+// set_plastic_flow of a grid surface whose rest shape can yield (dynamics/core/plastic_flow.h).
+template <typename Surface>
+void bind_plastic_flow(py::class_<Surface, Model>& surface_class) {
+  surface_class.def(
+      "set_plastic_flow",
+      [](Surface& self, const py::object& yield, double rate) {
+        if (yield.is_none()) {
+          self.set_plastic_flow(std::nullopt);
+        } else {
+          self.set_plastic_flow(PlasticFlow{yield.cast<double>(), rate});
+        }
+      },
+      py::arg("yield_distance"), py::arg("rate") = 1.0,
+      "Makes the rest shape yield after every step (dynamics/core/plastic_flow.h): a node's "
+      "rest position flows towards its position beyond yield_distance, at rate, so a push "
+      "leaves a dent; None stops the flow. Copies in a System are unaffected.");
+}
+
 void bind_grid(py::module_& module) {
   py::class_<Grid>(module, "Grid",
                    "A regular grid of nu by nv nodes with spacing h: node (i, j) at the parameter "
@@ -80,11 +98,13 @@ TerzopoulosSurface make_terzopoulos(const Grid& grid, const py::object& rest, do
 void bind_terzopoulos(py::module_& module) {
   using T = TerzopoulosSurface;
   const auto zero2 = py::make_tuple(py::make_tuple(0, 0), py::make_tuple(0, 0));
-  py::class_<T, Model>(
+  py::class_<T, Model> surface_class(
       module, "TerzopoulosSurface",
       "The elastic surface of Terzopoulos et al. 1987 on a Grid: q = [r_0, r_1, ...] (3 per "
       "node, Grid order); energy (h^2/4) sum eta_ij (G_ij - G0_ij)^2 + xi_ij (B_ij - B0_ij)^2 "
-      "of the metric G and curvature B against the rest shape.")
+      "of the metric G and curvature B against the rest shape.");
+  bind_plastic_flow(surface_class);
+  surface_class
       .def(py::init(&make_terzopoulos), py::arg("grid"), py::arg("rest"),
            py::arg("mass_density") = 1.0, py::arg("damping_density") = 0.0, py::arg("eta") = zero2,
            py::arg("xi") = zero2, py::arg("normal") = "classic", py::arg("delta") = 0.5,
@@ -109,7 +129,7 @@ void bind_terzopoulos(py::module_& module) {
       .def_property_readonly("grid", &T::grid, "The Grid.")
       .def_property_readonly(
           "rest_positions", [](const T& self) { return array_from_matrix(self.rest_positions()); },
-          "The rest shape, (#nodes, 3).")
+          "The rest shape, (#nodes, 3): the initial one, moved by plastic flow.")
       .def(
           "positions",
           [](const T& self, const py::object& q) {
@@ -170,10 +190,12 @@ PdeSurface make_pde(const Grid& grid, const py::object& rest, double b, double c
 }
 
 void bind_pde_and_snake(py::module_& module) {
-  py::class_<PdeSurface, Model>(
+  py::class_<PdeSurface, Model> pde_class(
       module, "PdeSurface",
       "The PDE surface of Romero 2005 (eq. 8: b d4/du4 + c d4/du2dv2 + d d4/dv4) on a Grid: q "
-      "holds the active nodes' positions (active_nodes lists them), the others stay at rest.")
+      "holds the active nodes' positions (active_nodes lists them), the others stay at rest.");
+  bind_plastic_flow(pde_class);
+  pde_class
       .def(py::init(&make_pde), py::arg("grid"), py::arg("rest"), py::arg("b") = 1.0,
            py::arg("c") = 2.0, py::arg("d") = 1.0, py::arg("mass_density") = 1.0,
            py::arg("damping_density") = 0.0, py::arg("tangents") = py::make_tuple(0, 0, 0, 0),
@@ -185,7 +207,12 @@ void bind_pde_and_snake(py::module_& module) {
       .def_property_readonly(
           "rest_positions",
           [](const PdeSurface& self) { return array_from_matrix(self.rest_positions()); },
-          "The rest shape, (#nodes, 3).")
+          "The initial rest shape, (#nodes, 3).")
+      .def_property_readonly(
+          "rest_coordinates",
+          [](const PdeSurface& self) { return array_from_vector(self.rest_coordinates()); },
+          "The active nodes' rest positions (3 per active node, the layout of q): the initial "
+          "ones, moved by plastic flow.")
       .def_property_readonly("active_nodes", &PdeSurface::active_nodes,
                              "Grid indices of the active nodes, ascending (a list).")
       .def("active_slot", &PdeSurface::active_slot, py::arg("node"),

@@ -16,6 +16,7 @@
 #include "python/src/control_net_properties.h"
 #include "python/src/model_arguments.h"
 #include "python/src/numpy_arrays.h"
+#include "python/src/rest_shape_binding.h"
 
 namespace dnurbs::python {
 
@@ -213,28 +214,32 @@ void bind_triangular_surface(py::module_& module) {
 
 void bind_triangular_model(py::module_& module) {
   using T = TriangularDNurbsSurface;
-  py::class_<T, Model>(
+  py::class_<T, Model> model_class(
       module, "TriangularDNurbsSurface",
       "A triangular D-NURBS surface (Qin & Terzopoulos, CAGD 14(4) 1997): q = [P_0, P_1, ...] "
       "or [P_0, w_0, ...] with free weights, the material of DNurbsSurface per unit parametric "
-      "area. Material points are domain points (u, v).")
+      "area. Material points are domain points (u, v).");
+  bind_rest_shape(model_class);
+  model_class
       .def(py::init([](const TriangularNurbsSurface& surface, double mass_density,
                        double damping_density, double a10, double a01, double b20, double b11,
                        double b02, bool free_weights, int quadrature_degree,
-                       int quadrature_subdivisions) {
+                       int quadrature_subdivisions, bool initial_shape_at_rest) {
              TriangularDNurbsSettings settings;
              settings.weight_mode = free_weights ? WeightMode::kFree : WeightMode::kFixed;
              settings.quadrature_degree = quadrature_degree;
              settings.quadrature_subdivisions = quadrature_subdivisions;
+             settings.initial_shape_at_rest = initial_shape_at_rest;
              return T(surface, {mass_density, damping_density, a10, a01, b20, b11, b02}, settings);
            }),
            py::arg("surface"), py::arg("mass_density") = 1.0, py::arg("damping_density") = 0.0,
            py::arg("a10") = 0.0, py::arg("a01") = 0.0, py::arg("b20") = 0.0, py::arg("b11") = 0.0,
            py::arg("b02") = 0.0, py::arg("free_weights") = false, py::arg("quadrature_degree") = 0,
-           py::arg("quadrature_subdivisions") = 0,
+           py::arg("quadrature_subdivisions") = 0, py::arg("initial_shape_at_rest") = false,
            "surface: a TriangularNurbsSurface; densities and stiffnesses as DNurbsSurface; "
            "quadrature_degree of the Dunavant rule (0: 2n, exact for polynomial surfaces); "
-           "quadrature_subdivisions 0: exact polynomial cells.")
+           "quadrature_subdivisions 0: exact polynomial cells; initial_shape_at_rest: the energy "
+           "of the change from the surface as given (set_rest_shape).")
       .def(
           "surface",
           [](const T& self, const py::object& q) { return self.surface(model_state(self, q)); },

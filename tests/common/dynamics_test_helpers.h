@@ -1,15 +1,29 @@
 #pragma once
-// Shapes shared by the dynamics tests.
+// Shapes and materials shared by the dynamics tests.
 
 #include <Eigen/Core>
 #include <vector>
 
+#include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 #include "dnurbs/nurbs/knot_vector.h"
 #include "dnurbs/nurbs/nurbs_curve.h"
 #include "dnurbs/nurbs/nurbs_surface.h"
 #include "dnurbs/nurbs/shape_generators.h"
 
 namespace dnurbs::test {
+
+/// A thin plate under tension with unit-order coefficients of every kind (a10 = 2, a01 = 0.5,
+/// b20 = 1, b11 = 0.7, b02 = 3), unit mass density and the given damping density.
+inline DNurbsSurfaceMaterial plate_under_tension(double damping_density = 0.0) {
+  DNurbsSurfaceMaterial material;
+  material.damping_density = damping_density;
+  material.a10 = 2.0;
+  material.a01 = 0.5;
+  material.b20 = 1.0;
+  material.b11 = 0.7;
+  material.b02 = 3.0;
+  return material;
+}
 
 /// Greville abscissae of a knot vector: placing control points there makes x(u) = u.
 inline Eigen::VectorXd greville(const KnotVector& knots) {

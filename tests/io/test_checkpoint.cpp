@@ -195,6 +195,53 @@ TEST(ResumedRun, APlasticRestShapeIsKeptByTheCheckpoint) {
               HasSubstr("a plastic rest shape needs \"rest_shape\": \"initial\""));
 }
 
+// Plastic rest shapes of the other model types: a pushed PDE surface, Terzopoulos sheet and
+// triangular D-NURBS patch.
+const char* const kPlasticScenes[] = {
+    R"({"models": [{"name": "clay", "type": "pde_surface",
+      "grid": {"nodes": [9, 9], "spacing": 0.125}, "material": {"damping": 5},
+      "plastic": {"yield": 0.02, "rate": 3}}],
+    "forces": [{"type": "point", "model": "clay", "at": [0.5, 0.5], "force": [0, 0, -50]}],
+    "integrator": {"dt": 0.1, "scheme": "implicit-euler"}, "run": {"steps": 30}})",
+    R"({"models": [{"name": "clay", "type": "terzopoulos_surface",
+      "grid": {"nodes": [9, 9], "spacing": 0.125}, "plastic": {"yield": 0.001, "rate": 3},
+      "material": {"damping_density": 2, "eta": [[0.1, 0], [0, 0.1]],
+                   "xi": [[0.0001, 0.0001], [0.0001, 0.0001]]},
+      "boundary": {"clamp_border": true}}],
+    "forces": [{"type": "gravity", "acceleration": [0, 0, -5]}],
+    "integrator": {"dt": 0.01, "scheme": "implicit-euler", "newton_iterations": 2},
+    "run": {"steps": 30}})",
+    R"({"models": [{"name": "clay", "type": "triangular_dnurbs_surface",
+      "domain": {"shape": "rectangle", "cells": [3, 3]}, "plastic": {"yield": 0.02, "rate": 3},
+      "material": {"damping_density": 3, "a10": 1, "a01": 1, "b20": 0.05, "b11": 0.05, "b02": 0.05},
+      "boundary": {"clamp_border": true}}],
+    "forces": [{"type": "point", "model": "clay", "at": [0.5, 0.5], "force": [0, 0, -1]}],
+    "integrator": {"dt": 0.1, "scheme": "implicit-euler"}, "run": {"steps": 30}})"};
+
+TEST(ResumedRun, EveryPlasticModelTypeKeepsItsRestShapeInTheCheckpoint) {
+  for (const char* text : kPlasticScenes) {
+    const Scene scene = parse_scene_json(text);
+    EXPECT_EQ(resume_difference(scene, 11, 30), 0.0) << text;
+    SceneSimulation simulation(scene);
+    for (int i = 0; i < 11; ++i) {
+      simulation.step();
+    }
+    const Checkpoint checkpoint =
+        parse_checkpoint_json(checkpoint_to_json(simulation.checkpoint()));
+    EXPECT_TRUE(same_bits(checkpoint.rest_coordinates, simulation.checkpoint().rest_coordinates));
+    EXPECT_GT((checkpoint.rest_coordinates - simulation.system().model(0).initial_coordinates())
+                  .lpNorm<Eigen::Infinity>(),
+              1e-3)
+        << text;
+    // The key is written back, and read with its path
+    EXPECT_NE(scene_to_json(scene).find(R"("plastic": {)"), std::string::npos);
+    std::string bad = text;
+    bad.replace(bad.find(R"("rate": 3)"), 9, R"("rate": 0)");
+    EXPECT_THAT(testing::error_message([&] { parse_scene_json(bad); }),
+                HasSubstr("models[0].plastic.rate"));
+  }
+}
+
 TEST(ResumedRun, CheckpointOfAnotherSceneIsRejected) {
   const Scene scene = read_scene_file(kExamples / "snake_contour.json");
   SceneSimulation simulation(scene);

@@ -3,10 +3,12 @@
 // refused with the JSON path of the bad value.
 #include "dnurbs/io/shape_recipe.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <numbers>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -79,6 +81,21 @@ TEST(ShapeRecipe, SplitTranslateAndShapeFilesApplyToEveryKind) {
   write_shape_file(file, Shape(half_circle_xz(1.5)));
   expect_same(make(R"({"kind": "revolve", "profile": "dnurbs_recipe_profile.json"})"), sphere(1.5));
   std::filesystem::remove(file);
+}
+
+TEST(ShapeRecipe, TheKeyListHasEveryKeyOfEveryKindOnce) {
+  // The options of `dnurbs make` are these keys: the union of the kinds' own keys, then the
+  // common ones
+  std::vector<std::string> keys(shape_recipe_keys().begin(), shape_recipe_keys().end());
+  EXPECT_EQ(keys.size(), 20U);
+  EXPECT_EQ(keys.front(), "start");  // line's first key
+  EXPECT_EQ(keys[keys.size() - 2], "split");
+  EXPECT_EQ(keys.back(), "translate");
+  std::sort(keys.begin(), keys.end());
+  EXPECT_EQ(std::adjacent_find(keys.begin(), keys.end()), keys.end());
+  for (const char* key : {"profile_control_points", "major_radius", "angle_degrees", "sections"}) {
+    EXPECT_TRUE(std::binary_search(keys.begin(), keys.end(), std::string(key))) << key;
+  }
 }
 
 TEST(ShapeRecipe, BadRecipesNameTheirJsonPath) {

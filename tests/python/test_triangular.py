@@ -95,3 +95,20 @@ def test_triangular_dnurbs_energy_of_a_tilted_plane():
     free = dnurbs.TriangularDNurbsSurface(surface, free_weights=True, quadrature_degree=6,
                                           quadrature_subdivisions=0)
     assert free.coordinate_count == 4 * 48
+
+
+def test_triangular_dnurbs_rest_shape_and_plastic_flow():
+    _, surface = plane_surface(a=0.3, b=-0.2)
+    # The tilted plane under tension: measured from zero it is not at rest, from itself it is
+    model = dnurbs.TriangularDNurbsSurface(surface, a10=2.0, a01=1.0, initial_shape_at_rest=True)
+    assert model.has_rest_shape
+    np.testing.assert_array_equal(model.rest_coordinates, model.initial_coordinates())
+    assert model.potential_energy() == pytest.approx(0.0, abs=1e-28)
+    q = model.initial_coordinates()
+    shifted = q + 0.1
+    model.set_rest_shape(shifted)  # a translation: the energy of the change is still zero
+    assert model.potential_energy(q) == pytest.approx(0.0, abs=1e-26)
+    model.set_plastic_flow(0.05, rate=2.0)
+    model.set_plastic_flow(None)
+    with pytest.raises(dnurbs.Error, match="plastic yield -1"):
+        model.set_plastic_flow(-1.0)

@@ -25,21 +25,11 @@
 #include "dnurbs/dynamics/integrators/static_equilibrium.h"
 #include "dnurbs/nurbs/primitive_shapes.h"
 #include "dnurbs/nurbs/shape_generators.h"
+#include "tests/common/dynamics_test_helpers.h"
 #include "tests/common/error_message.h"
 
 namespace dnurbs {
 namespace {
-
-DNurbsSurfaceMaterial plate_material() {
-  DNurbsSurfaceMaterial material;
-  material.damping_density = 2.0;
-  material.a10 = 2.0;
-  material.a01 = 0.5;
-  material.b20 = 1.0;
-  material.b11 = 0.7;
-  material.b02 = 3.0;
-  return material;
-}
 
 DNurbsSettings rest_settings(WeightMode mode, bool at_rest) {
   DNurbsSettings settings;
@@ -84,14 +74,16 @@ double relative_internal_force(const DNurbsSurface& model) {
 TEST(DNurbsRestShape, EveryGeneratedSurfaceIsAtRestWithItsInitialShapeAsRest) {
   for (const auto& [name, surface] : generated_surfaces()) {
     for (const WeightMode mode : {WeightMode::kFixed, WeightMode::kFree}) {
-      const DNurbsSurface at_rest(surface, plate_material(), rest_settings(mode, true));
+      const DNurbsSurface at_rest(surface, test::plate_under_tension(2.0),
+                                  rest_settings(mode, true));
       EXPECT_TRUE(at_rest.has_rest_shape());
       // x^alpha(q) - x^alpha(q_r) at the same q by the same arithmetic: zero up to round-off.
       EXPECT_LT(relative_internal_force(at_rest), 1e-12) << name;
       EXPECT_LT(at_rest.potential_energy(at_rest.initial_coordinates()), 1e-24) << name;
 
       // Measured from zero, tension pulls on everything but a flat sheet off its border.
-      const DNurbsSurface from_zero(surface, plate_material(), rest_settings(mode, false));
+      const DNurbsSurface from_zero(surface, test::plate_under_tension(2.0),
+                                    rest_settings(mode, false));
       EXPECT_FALSE(from_zero.has_rest_shape());
       EXPECT_GT(relative_internal_force(from_zero), 1e-3) << name;
     }
@@ -119,7 +111,8 @@ TEST(DNurbsRestShape, CurvesAreAtRestWithTheirInitialShapeAsRest) {
 
 TEST(DNurbsRestShape, FreeWeightSphereStepsInPlaceFromRest) {
   const NurbsSurface surface = sphere(1.0);
-  const DNurbsSurface model(surface, plate_material(), rest_settings(WeightMode::kFree, true));
+  const DNurbsSurface model(surface, test::plate_under_tension(2.0),
+                            rest_settings(WeightMode::kFree, true));
   System system(model);
   Integrator integrator(IntegratorSettings{});
   for (int step = 0; step < 10; ++step) {
@@ -145,7 +138,8 @@ Eigen::VectorXd displaced(const DNurbsSurface& model, double amplitude) {
 
 TEST(DNurbsRestShape, InternalForceIsMinusTheEnergyGradient) {
   for (const WeightMode mode : {WeightMode::kFixed, WeightMode::kFree}) {
-    const DNurbsSurface model(sphere(1.0), plate_material(), rest_settings(mode, true));
+    const DNurbsSurface model(sphere(1.0), test::plate_under_tension(2.0),
+                              rest_settings(mode, true));
     const Eigen::VectorXd q = displaced(model, 0.05);
     Eigen::VectorXd force = Eigen::VectorXd::Zero(model.coordinate_count());
     model.add_internal_force(q, force);
@@ -170,7 +164,7 @@ TEST(DNurbsRestShape, InternalForceIsMinusTheEnergyGradient) {
 
 TEST(DNurbsRestShape, FixedWeightEnergyIsTheQuadraticFormOfTheChange) {
   // Fixed weights: J constant, E(q) = 1/2 (q - q_r)^T K (q - q_r) and f = -K (q - q_r) exactly.
-  const DNurbsSurface model(torus(1.0, 0.4), plate_material(),
+  const DNurbsSurface model(torus(1.0, 0.4), test::plate_under_tension(2.0),
                             rest_settings(WeightMode::kFixed, true));
   const Eigen::VectorXd q = displaced(model, 0.1);
   const Eigen::VectorXd change = q - model.initial_coordinates();
@@ -185,7 +179,8 @@ TEST(DNurbsRestShape, FixedWeightEnergyIsTheQuadraticFormOfTheChange) {
 }
 
 TEST(DNurbsRestShape, SetRestShapeMovesTheRestAndTheWeightAnchor) {
-  DNurbsSurface model(sphere(1.0), plate_material(), rest_settings(WeightMode::kFree, false));
+  DNurbsSurface model(sphere(1.0), test::plate_under_tension(2.0),
+                      rest_settings(WeightMode::kFree, false));
   const Eigen::VectorXd rest = displaced(model, 0.08);
   model.set_rest_shape(rest);
   EXPECT_TRUE(model.has_rest_shape());
@@ -200,7 +195,8 @@ TEST(DNurbsRestShape, SetRestShapeMovesTheRestAndTheWeightAnchor) {
 }
 
 TEST(DNurbsRestShape, BadRestShapesAreRefusedNamingTheEntry) {
-  DNurbsSurface model(sphere(1.0), plate_material(), rest_settings(WeightMode::kFree, false));
+  DNurbsSurface model(sphere(1.0), test::plate_under_tension(2.0),
+                      rest_settings(WeightMode::kFree, false));
   const Eigen::VectorXd short_vector = Eigen::VectorXd::Zero(5);
   EXPECT_THAT(testing::error_message([&] { model.set_rest_shape(short_vector); }),
               ::testing::HasSubstr("5 entries"));
@@ -226,7 +222,7 @@ void fix_first_row(System& system, const NurbsSurface& surface) {
 TEST(DNurbsRestShape, PushedSphereReturnsToItsRestShape) {
   const NurbsSurface surface = sphere(1.0);
   for (const bool at_rest : {true, false}) {
-    const DNurbsSurface model(surface, plate_material(),
+    const DNurbsSurface model(surface, test::plate_under_tension(2.0),
                               rest_settings(WeightMode::kFixed, at_rest));
     System system(model);
     fix_first_row(system, surface);
@@ -273,7 +269,7 @@ DentHeights pushed_and_released(double yield) {
   DNurbsSettings settings;
   settings.plastic_flow = PlasticFlow{yield, 5.0};
   const NurbsSurface sheet = greville_plane({2, 2}, {7, 7}, {3, 3});
-  const DNurbsSurface model(sheet, plate_material(), settings);
+  const DNurbsSurface model(sheet, test::plate_under_tension(2.0), settings);
   System system(model);
   system.fix_border(0);
   const Eigen::Vector2d centre(1.0, 1.0);
@@ -311,7 +307,8 @@ TEST(DNurbsRestShape, APushBeyondTheYieldDistanceLeavesADent) {
 
 TEST(DNurbsRestShape, StaticEquilibriumKeepsTheRestShape) {
   const NurbsSurface surface = cylinder(0.5, 2.0, 5);
-  const DNurbsSurface model(surface, plate_material(), rest_settings(WeightMode::kFixed, true));
+  const DNurbsSurface model(surface, test::plate_under_tension(2.0),
+                            rest_settings(WeightMode::kFixed, true));
   System system(model);
   fix_first_row(system, surface);
   solve_static_equilibrium(system);

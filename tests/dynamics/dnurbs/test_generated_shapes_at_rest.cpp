@@ -11,19 +11,10 @@
 #include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
 #include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 #include "dnurbs/nurbs/shape_generators.h"
+#include "tests/common/dynamics_test_helpers.h"
 
 namespace dnurbs {
 namespace {
-
-DNurbsSurfaceMaterial stiff_surface_material() {
-  DNurbsSurfaceMaterial material;
-  material.a10 = 2.0;
-  material.a01 = 0.5;
-  material.b20 = 1.0;
-  material.b11 = 0.7;
-  material.b02 = 3.0;
-  return material;
-}
 
 // The largest |f| over the control points (i, j) off the border of a surface's net, relative to
 // the size of the terms that cancel in it, max_i sum_j |K_ij q_j|: the force is a sum of O(100)
@@ -47,9 +38,9 @@ double interior_force(const DNurbsSurface& model) {
 TEST(GeneratedShapesAtRest, GrevilleSheetFeelsNoInternalForceOffItsBorder) {
   for (const int degree : {2, 3, 4}) {
     const NurbsSurface sheet = greville_plane({3, 2}, {9, 7}, {degree, degree}, {1, -1, 0.5});
-    const DNurbsSurface model(sheet, stiff_surface_material());
+    const DNurbsSurface model(sheet, test::plate_under_tension());
     EXPECT_LT(interior_force(model), 1e-13) << "degree " << degree;
-    const DNurbsSurface finer(split_spans(sheet, {2, 3}), stiff_surface_material());
+    const DNurbsSurface finer(split_spans(sheet, {2, 3}), test::plate_under_tension());
     EXPECT_LT(interior_force(finer), 1e-13) << "split, degree " << degree;
 
     // The same knots with evenly spaced control points: the sheet is pulled in its plane
@@ -60,7 +51,7 @@ TEST(GeneratedShapesAtRest, GrevilleSheetFeelsNoInternalForceOffItsBorder) {
       }
     }
     const DNurbsSurface uneven(NurbsSurface(sheet.knots_u(), sheet.knots_v(), even),
-                               stiff_surface_material());
+                               test::plate_under_tension());
     EXPECT_GT(interior_force(uneven), 1e-4) << "degree " << degree;
   }
 }
