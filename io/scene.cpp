@@ -284,7 +284,7 @@ void read_design(const SceneReader& reader, const JsonValue& design, SceneDesign
 Scene read_scene(const SceneReader& reader, const JsonValue& root) {
   reader.object(root, "",
                 {"description", "models", "forces", "constraints", "integrator", "run", "probes",
-                 "output", "design"});
+                 "output", "design", "obstacles", "contact"});
   Scene scene;
   scene.source = reader.source();
   scene.directory = reader.directory();
@@ -310,6 +310,7 @@ Scene read_scene(const SceneReader& reader, const JsonValue& root) {
           read_constraint(reader, names, (*constraints)[i], json_index_path("constraints", i)));
     }
   }
+  read_scene_obstacles(reader, root, scene.obstacles, scene.contact);
   if (const JsonValue* integrator = reader.find(root, "integrator")) {
     read_integrator(reader, *integrator, scene.integrator);
   }
@@ -392,6 +393,7 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
   for (const auto& constraint : scene.constraints) {
     root["constraints"].push_back(constraint_json(constraint));
   }
+  write_scene_obstacles(scene.obstacles, scene.contact, root);
   const SceneIntegrator& s = scene.integrator;
   root["integrator"] = {{"scheme", s.scheme},
                         {"dt", s.dt},

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "dnurbs/io/clone_ptr.h"
+#include "dnurbs/io/scene_obstacles.h"
 #include "dnurbs/io/scene_spec.h"
 #include "dnurbs/io/schedule.h"
 
@@ -137,6 +138,9 @@ struct Scene {
   std::vector<SceneProbe> probes;
   SceneOutput output;
   std::optional<SceneDesign> design;  ///< present if the scene has a "design" section
+  /// Rigid obstacles (keys "obstacles" and "contact", io/scene_obstacles.h) every model meets.
+  std::vector<Obstacle> obstacles;
+  SceneContact contact;
   /// The number of steps to run: steps, or ceil(duration / dt - 1e-9).
   int step_count() const;
 };

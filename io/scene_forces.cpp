@@ -215,4 +215,49 @@ std::unique_ptr<SceneForceSpec> read_pressure(const SceneReader& reader, const M
   return spec;
 }
 
+// wind -------------------------------------------------------------------------------------------
+
+std::unique_ptr<SceneForceSpec> SceneWind::clone() const {
+  return std::make_unique<SceneWind>(*this);
+}
+
+void SceneWind::write(JsonOut& json) const {
+  json = {{"type", type()}};
+  if (model >= 0) {
+    json["model"] = model;
+  }
+  json["velocity"] = schedule_json(velocity);
+  json["drag"] = drag;
+}
+
+void SceneWind::apply(System& system, double start, double end) const {
+  if (model >= 0 && system.model(model).parametric_dimension() != 2) {
+    throw SceneKeyError(".model", make_error("expected a surface model: model ", model,
+                                             " is a curve, which feels no wind")
+                                      .what());
+  }
+  for (int m = 0; m < system.model_count(); ++m) {
+    if ((model < 0 && system.model(m).parametric_dimension() == 2) || model == m) {
+      system.add_force(m, windowed(wind(vector_of_time(velocity), drag), start, end));
+    }
+  }
+}
+
+bool SceneWind::add_to_region(int index, SculptedRegion& /*region*/) const {
+  return model == -1 || model == index;
+}
+
+std::unique_ptr<SceneForceSpec> read_wind(const SceneReader& reader, const ModelNames& names,
+                                          const JsonValue& force, const std::string& path) {
+  reader.object(force, path, {"type", "model", "velocity", "drag", "start", "end"});
+  auto spec = std::make_unique<SceneWind>();
+  if (const JsonValue* model = reader.find(force, "model")) {
+    spec->model = names.resolve(reader, *model, join_json_path(path, "model"));
+  }
+  spec->velocity = required_vector_schedule(reader, force, path, "velocity");
+  spec->drag = reader.bounded(reader.require(force, path, "drag", "a drag coefficient >= 0"),
+                              join_json_path(path, "drag"), 0.0, false);
+  return spec;
+}
+
 }  // namespace dnurbs

@@ -74,6 +74,20 @@ struct ScenePressure final : SceneForceSpec {
   bool add_to_region(int index, SculptedRegion& region) const override;
 };
 
+/// "wind": the viscous fluid force drag (n . (v(t) - xdot)) n per unit area (dynamics/core/forces.h
+/// wind, Terzopoulos et al. 1987) on one surface model or (model -1) on every surface model.
+struct SceneWind final : SceneForceSpec {
+  int model = -1;  ///< -1: every surface model (curves feel no wind)
+  VectorSchedule velocity;
+  double drag = 0.0;
+  std::unique_ptr<SceneForceSpec> clone() const override;
+  std::string type() const override { return "wind"; }
+  void write(JsonOut& json) const override;
+  /// Throws SceneKeyError(".model") when the model named is a curve.
+  void apply(System& system, double start, double end) const override;
+  bool add_to_region(int index, SculptedRegion& region) const override;
+};
+
 /// The readers of io/scene_registry.cpp's force table.
 std::unique_ptr<SceneForceSpec> read_point_force(const SceneReader& reader, const ModelNames& names,
                                                  const JsonValue& force, const std::string& path);
@@ -88,5 +102,7 @@ std::unique_ptr<SceneForceSpec> read_gravity(const SceneReader& reader, const Mo
                                              const JsonValue& force, const std::string& path);
 std::unique_ptr<SceneForceSpec> read_pressure(const SceneReader& reader, const ModelNames& names,
                                               const JsonValue& force, const std::string& path);
+std::unique_ptr<SceneForceSpec> read_wind(const SceneReader& reader, const ModelNames& names,
+                                          const JsonValue& force, const std::string& path);
 
 }  // namespace dnurbs

@@ -54,6 +54,7 @@ const std::vector<SceneForceType>& scene_force_types() {
       {"control_point", &read_control_point_force},
       {"gravity", &read_gravity},
       {"pressure", &read_pressure},
+      {"wind", &read_wind},
   };
   return types;
 }

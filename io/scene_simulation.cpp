@@ -183,6 +183,12 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   add_models();
   add_forces();
   add_constraints();
+  try {
+    contacts_ = SceneContacts(scene_, system_);  // penalty contact: one force per model
+  } catch (const SceneKeyError& error) {
+    fail(scene_, error.key(), error.what());
+  }
+  force_labels_.resize(static_cast<size_t>(system_.force_count()), "obstacles (penalty contact)");
   // Every material parameter of a force, constraint or probe is checked now, with its JSON path,
   // rather than at the first step
   const auto check = [&](const std::string& path, const auto& spec) {
@@ -321,6 +327,7 @@ void SceneSimulation::step() {
     } else {
       integrator_.step(system_, dt);
     }
+    contacts_.project(system_);  // projection contact, part of the step (checkpoints see it)
   } catch (const Error& error) {
     restore_last();
     throw SimulationDiverged(

@@ -18,6 +18,7 @@
 #include "dnurbs/dynamics/integrators/integrator.h"
 #include "dnurbs/io/checkpoint.h"
 #include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_obstacles.h"
 #include "dnurbs/surface/triangle_mesh.h"
 
 namespace dnurbs {
@@ -81,10 +82,13 @@ class SceneSimulation {
   const Integrator& integrator() const { return integrator_; }
   /// The energy budget of the run (its last accepted state is the simulation's state).
   const EnergyBudget& energy_budget() const { return budget_; }
+  /// The scene's obstacles and the contact points of every model (io/scene_obstacles.h).
+  const SceneContacts& contacts() const { return contacts_; }
   /// Steps done so far (restored by a checkpoint).
   int steps_done() const { return steps_; }
 
-  /// Advances one integrator.dt. Throws SimulationDiverged (state back to the last good one)
+  /// Advances one integrator.dt (then projects the nodes out of the obstacles with projection
+  /// contact). Throws SimulationDiverged (state back to the last good one)
   /// if the integrator rejects the step or its energy fails the energy budget (plastic rest
   /// shapes back too).
   void step();
@@ -147,6 +151,7 @@ class SceneSimulation {
   int steps_ = 0;
   std::vector<double> tube_radii_;  ///< curves and snakes: tube radius of their meshes
   EnergyBudget budget_;
+  SceneContacts contacts_;  ///< obstacles: penalty forces in system_, or projection per step
   std::vector<std::string> force_labels_;   ///< what each System force is, for reports
   std::vector<std::string> spring_labels_;  ///< what each System spring id is
 };

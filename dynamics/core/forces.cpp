@@ -119,6 +119,42 @@ Force pressure(double value) {
   return pressure([value](double) { return value; });
 }
 
+Force wind(VectorOfTime wind_velocity, double drag) {
+  if (!(drag >= 0.0) || !std::isfinite(drag)) {
+    throw make_error("wind drag ", drag, " is not a non-negative finite number");
+  }
+  if (!wind_velocity) {
+    throw make_error("wind force has no velocity function");
+  }
+  return [wind_velocity = std::move(wind_velocity), drag](const Model& model, double t,
+                                                          ConstVectorRef q, ConstVectorRef qd,
+                                                          VectorRef generalized) {
+    const Eigen::Vector3d v = wind_velocity(t);
+    model.add_distributed_force(
+        q,
+        [&](const MaterialSample& sample) -> Eigen::Vector3d {
+          // Terzopoulos et al. 1987, section 5: drag (n . (v - xdot)) n per unit area, times the
+          // area element |x_u x x_v| per unit parametric area
+          const Eigen::Vector3d normal = sample.tangent_u.cross(sample.tangent_v);
+          const double area_element = normal.norm();
+          if (area_element == 0.0) {
+            return Eigen::Vector3d::Zero();  // curves and degenerate points
+          }
+          const Eigen::Vector3d velocity = model.position_jacobian(q, sample.parameter) * qd;
+          return (drag * normal.dot(v - velocity) / area_element) * normal;
+        },
+        generalized);
+  };
+}
+
+Force wind(const Eigen::Vector3d& wind_velocity, double drag) {
+  if (!wind_velocity.allFinite()) {
+    throw make_error("wind velocity (", wind_velocity.x(), ", ", wind_velocity.y(), ", ",
+                     wind_velocity.z(), ") is not finite");
+  }
+  return wind([wind_velocity](double) { return wind_velocity; }, drag);
+}
+
 Force windowed(Force force, double start, double end) {
   return [force = std::move(force), start, end](const Model& model, double time, ConstVectorRef q,
                                                 ConstVectorRef qd, VectorRef f) {

@@ -51,6 +51,27 @@ Force gravity(const Eigen::Vector3d& acceleration);
 Force pressure(ScalarOfTime pressure);
 Force pressure(double pressure);
 
+/// Wind: the viscous fluid force of Terzopoulos, Platt, Barr & Fleischer, "Elastically
+/// deformable models", SIGGRAPH 1987, section 5 (the flag in wind and the rug of Terzopoulos,
+/// "Deformable Models: Classic, Topology-Adaptive and Generalized Formulations", figure 1). Per
+/// unit surface area
+///
+///   f = drag (n . (v_wind(t) - xdot)) n,      n = x_u x x_v / |x_u x x_v|, xdot = L(u) qd,
+///
+/// so per unit parametric area drag (N . (v_wind - xdot)) N / |N| with N = x_u x x_v, and the
+/// generalized force is integral L^T f |N| du dv by the model's quadrature rule (Gauss points of
+/// D-NURBS, node areas h^2 of grid surfaces). Only the velocity along the normal is resisted: a
+/// sheet parallel to the wind or moving with it feels none. Curves (x_v = 0) and degenerate
+/// points (N = 0) get no force. Units: drag is force per unit area per unit velocity (mass per
+/// unit area per unit time), v_wind a velocity. The force is explicit like every applied force:
+/// its velocity part -drag (n . xdot) n is a damping that is not in the step matrix, so it is
+/// stable only while drag dt is small against the mass per unit area (about drag dt < 2 mu).
+/// Throws Error naming the value if drag is negative or not finite, or if there is no velocity
+/// function.
+Force wind(VectorOfTime wind_velocity, double drag);
+/// The same with a constant wind velocity (Error naming a non-finite one).
+Force wind(const Eigen::Vector3d& wind_velocity, double drag);
+
 /// `force` while start <= t < end, nothing outside that window.
 Force windowed(Force force, double start, double end);
 

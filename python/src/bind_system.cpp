@@ -171,6 +171,20 @@ void bind_system_forces(py::class_<System>& system) {
           py::arg("i"), py::arg("pressure"), py::arg("start") = 0.0, py::arg("end") = kForever,
           "Pressure p along the normal of surface model i (inflation).")
       .def(
+          "add_wind",
+          [](System& self, int i, const py::object& velocity, double drag, double start,
+             double end) {
+            return self.add_force(
+                i, windowed(wind(vector_of_time(velocity, "velocity"), drag), start, end));
+          },
+          py::arg("i"), py::arg("velocity"), py::arg("drag"), py::arg("start") = 0.0,
+          py::arg("end") = kForever,
+          "Wind on surface model i (Terzopoulos et al. 1987): per unit area drag (n . (v - "
+          "xdot)) n, n the unit normal, xdot the surface velocity; velocity v (3,) or v(t) (a "
+          "function of time returning (3,)), drag >= 0 (force per unit area per unit "
+          "velocity). Explicit: its damping is not in the step matrix. Curves feel none. "
+          "Returns the force's index.")
+      .def(
           "add_control_point_force",
           [](System& self, int i, std::vector<int> points, const py::object& force, double start,
              double end) {

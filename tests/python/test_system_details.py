@@ -54,6 +54,24 @@ def test_pressure_and_control_point_forces_have_exact_totals():
     assert system.spring_model(spring) == 0
 
 
+def test_wind_force_has_the_exact_total_and_vanishes_with_the_wind():
+    # The flat unit sheet at rest, normal +z, in a wind v: drag * area * (n . v) n in all (the
+    # basis functions sum to one, the quadrature is exact); moving with the wind: nothing.
+    system = dnurbs.System()
+    system.add_model(sheet(count=4))
+    index = system.add_wind(0, [1.0, -2.0, 3.0], drag=0.5)
+    assert index == 0
+    force = system.applied_forces().reshape(-1, 3)
+    np.testing.assert_allclose(force.sum(axis=0), [0.0, 0.0, 1.5], atol=1e-14)
+    system.set_velocities(0, np.tile([1.0, -2.0, 3.0], 16))
+    np.testing.assert_allclose(system.applied_forces(), 0.0, atol=1e-14)
+    system.clear_forces()
+    system.add_wind(0, lambda t: np.array([0.0, 0.0, 2.0 + t]), 1.0, start=1.0)
+    assert np.count_nonzero(system.applied_forces()) == 0  # before its start
+    with pytest.raises(dnurbs.Error, match="-1"):
+        system.add_wind(0, [1.0, 0.0, 0.0], -1.0)
+
+
 def test_integrator_counters_and_spline_velocity():
     system = dnurbs.System()
     system.add_model(sheet())
