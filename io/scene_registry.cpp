@@ -2,6 +2,7 @@
 
 #include "dnurbs/io/scene_constraints.h"
 #include "dnurbs/io/scene_forces.h"
+#include "dnurbs/io/scene_image_force.h"
 
 namespace dnurbs {
 
@@ -55,6 +56,7 @@ const std::vector<SceneForceType>& scene_force_types() {
       {"gravity", &read_gravity},
       {"pressure", &read_pressure},
       {"wind", &read_wind},
+      {"image_potential", &read_image_potential},
   };
   return types;
 }

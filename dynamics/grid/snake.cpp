@@ -8,6 +8,8 @@
 
 #include "dnurbs/core/error.h"
 #include "dnurbs/core/kronecker.h"
+#include "dnurbs/vision/edge_potential.h"
+#include "dnurbs/vision/image.h"
 
 namespace dnurbs {
 
@@ -192,72 +194,11 @@ Potential image_potential(const Eigen::MatrixXd& image, double sigma, double c) 
     throw make_error("image of ", image.rows(), " by ", image.cols(),
                      " pixels is smaller than 2 by 2");
   }
-  if (!image.allFinite()) {
-    throw make_error("image has a non-finite pixel");
-  }
-  if (!(sigma >= 0.0) || !std::isfinite(sigma)) {
-    throw make_error("image smoothing width sigma = ", sigma, " is not non-negative and finite");
-  }
-  if (!std::isfinite(c)) {
-    throw make_error("image potential magnitude c = ", c, " is not finite");
-  }
-  const Eigen::Index rows = image.rows();
-  const Eigen::Index cols = image.cols();
-  // G_sigma * I: separable Gaussian, radius 3 sigma, clamped borders.
-  Eigen::MatrixXd smooth = image;
-  if (sigma > 0.0) {
-    const int radius = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
-    Eigen::VectorXd kernel(2 * radius + 1);
-    for (int k = -radius; k <= radius; ++k) {
-      kernel[k + radius] = std::exp(-0.5 * k * k / (sigma * sigma));
-    }
-    kernel /= kernel.sum();
-    Eigen::MatrixXd pass(rows, cols);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      for (Eigen::Index col = 0; col < cols; ++col) {
-        double sum = 0.0;
-        for (int k = -radius; k <= radius; ++k) {
-          sum += kernel[k + radius] * image(r, std::clamp<Eigen::Index>(col + k, 0, cols - 1));
-        }
-        pass(r, col) = sum;
-      }
-    }
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      for (Eigen::Index col = 0; col < cols; ++col) {
-        double sum = 0.0;
-        for (int k = -radius; k <= radius; ++k) {
-          sum += kernel[k + radius] * pass(std::clamp<Eigen::Index>(r + k, 0, rows - 1), col);
-        }
-        smooth(r, col) = sum;
-      }
-    }
-  }
-  // P = -c |grad(G_sigma * I)| at the pixels (central differences, one-sided at the border).
-  auto field = std::make_shared<Eigen::MatrixXd>(rows, cols);
-  for (Eigen::Index r = 0; r < rows; ++r) {
-    for (Eigen::Index col = 0; col < cols; ++col) {
-      const Eigen::Index c0 = std::max<Eigen::Index>(col - 1, 0);
-      const Eigen::Index c1 = std::min<Eigen::Index>(col + 1, cols - 1);
-      const Eigen::Index r0 = std::max<Eigen::Index>(r - 1, 0);
-      const Eigen::Index r1 = std::min<Eigen::Index>(r + 1, rows - 1);
-      const double gx = (smooth(r, c1) - smooth(r, c0)) / static_cast<double>(c1 - c0);
-      const double gy = (smooth(r1, col) - smooth(r0, col)) / static_cast<double>(r1 - r0);
-      (*field)(r, col) = -c * std::hypot(gx, gy);
-    }
-  }
-  return [field](const Eigen::Vector2d& x) {
-    const double fx = std::clamp(x.x(), 0.0, static_cast<double>(field->cols() - 1));
-    const double fy = std::clamp(x.y(), 0.0, static_cast<double>(field->rows() - 1));
-    const Eigen::Index c0 =
-        std::min<Eigen::Index>(static_cast<Eigen::Index>(fx), field->cols() - 2);
-    const Eigen::Index r0 =
-        std::min<Eigen::Index>(static_cast<Eigen::Index>(fy), field->rows() - 2);
-    const double s = fx - static_cast<double>(c0);
-    const double t = fy - static_cast<double>(r0);
-    const Eigen::MatrixXd& p = *field;
-    return (1 - s) * (1 - t) * p(r0, c0) + s * (1 - t) * p(r0, c0 + 1) +
-           (1 - s) * t * p(r0 + 1, c0) + s * t * p(r0 + 1, c0 + 1);
-  };
+  // Rows are y and columns x here, Image is width by height: the transpose.
+  Image data(static_cast<int>(image.cols()), static_cast<int>(image.rows()));
+  data.values = image.transpose().array();
+  auto potential = std::make_shared<const ImageEdgePotential>(data, sigma, c);
+  return [potential](const Eigen::Vector2d& x) { return potential->value(x); };
 }
 
 }  // namespace dnurbs

@@ -86,10 +86,12 @@ using Potential = std::function<double(const Eigen::Vector2d&)>;
 /// (nodes): snakes, grid surfaces. Throws Error if the step is not positive and finite.
 Force potential_force(Potential potential, double gradient_step = 1e-6);
 
-/// The image potential of Terzopoulos 2003 (below eq 1.3): P = -c |grad(G_sigma * I)|, the image
-/// convolved with a Gaussian of width sigma (pixels), its gradient by central differences,
-/// bilinearly interpolated; x is the column and y the row (pixel units), clamped to the image.
-/// Throws Error for an image under 2 by 2 pixels, a non-finite pixel, sigma < 0 or c not finite.
+/// The image potential of Terzopoulos 2003 (below eq 1.3): P = -c |grad(G_sigma * I)| of the
+/// image given as a matrix (row y, column x; pixel units), the ImageEdgePotential of
+/// vision/edge_potential.h (derivative-of-Gaussian gradient, cubic interpolation, points clamped
+/// to the image) as a function. dynamics/core/image_force.h applies its exact gradient as a force
+/// on any model. Throws Error for an image under 2 by 2 pixels, a non-finite pixel, sigma outside
+/// [0, kMaxGaussianSigma] or c not finite.
 Potential image_potential(const Eigen::MatrixXd& image, double sigma, double c = 1.0);
 
 }  // namespace dnurbs
