@@ -11,6 +11,7 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include "dnurbs/dynamics/core/image_force.h"
 #include "dnurbs/dynamics/grid/snake.h"
 #include "dnurbs/vision/contour.h"
 #include "dnurbs/vision/gaussian_filter.h"
@@ -320,7 +321,7 @@ void bind_image_forces(py::module_& module) {
       },
       py::arg("pixels"), py::arg("sigma"), py::arg("c") = 1.0,
       "The snake potential P(x, y) = -c |grad(G_sigma * I)| of pixels (height, width) "
-      "(Terzopoulos, below eq. 1.3), bilinear: a function of (x, y) in pixels.");
+      "(Terzopoulos, below eq. 1.3), as ImageEdgePotential: a function of (x, y) in pixels.");
   module.def(
       "add_image_force",
       [](System& system, int model, const py::object& pixels, double sigma, double c,
@@ -334,6 +335,39 @@ void bind_image_forces(py::module_& module) {
       py::arg("gradient_step") = 1e-6,
       "Adds the image force -grad P (eq. 1.5) at every node's (x, y) of a snake or grid "
       "surface `model` of `system`; returns the force's index.");
+  const auto frame = [](const py::object& origin, const py::object& pixel_size) {
+    ImageFrame result{vector3_argument(origin, "origin"), Eigen::Vector3d::Ones()};
+    result.spacing = py::isinstance<py::float_>(pixel_size) || py::isinstance<py::int_>(pixel_size)
+                         ? Eigen::Vector3d::Constant(py::cast<double>(pixel_size))
+                         : vector3_argument(pixel_size, "pixel_size");
+    return result;
+  };
+  module.def(
+      "add_edge_force",
+      [frame](System& system, int model, const ImageEdgePotential& potential,
+              const py::object& origin, const py::object& pixel_size) {
+        return system.add_force(
+            model, image_edge_force(std::make_shared<const ImageEdgePotential>(potential),
+                                    frame(origin, pixel_size)));
+      },
+      py::arg("system"), py::arg("model"), py::arg("potential"),
+      py::arg("origin") = py::make_tuple(0.0, 0.0, 0.0), py::arg("pixel_size") = 1.0,
+      "Adds the edge force -grad P (eq. 1.5; the exact gradient of the interpolant) of an "
+      "ImageEdgePotential to any model of `system`, the image placed with pixel (x, y) at "
+      "origin + pixel_size * (x, y, 0) (pixel_size a number or (sx, sy, sz)); snakes and grid "
+      "surfaces take it per node, the other models per unit parametric measure. Returns the "
+      "force's index.");
+  module.def(
+      "add_edge_force",
+      [frame](System& system, int model, const VolumeEdgePotential& potential,
+              const py::object& origin, const py::object& pixel_size) {
+        return system.add_force(
+            model, volume_edge_force(std::make_shared<const VolumeEdgePotential>(potential),
+                                     frame(origin, pixel_size)));
+      },
+      py::arg("system"), py::arg("model"), py::arg("potential"),
+      py::arg("origin") = py::make_tuple(0.0, 0.0, 0.0), py::arg("pixel_size") = 1.0,
+      "The same for a VolumeEdgePotential: voxel (x, y, z) at origin + pixel_size * (x, y, z).");
 }
 
 }  // namespace

@@ -133,3 +133,37 @@ def test_image_force_pulls_a_snake_to_an_edge():
     # Inside the edge the force -grad P points outward (toward the edge) at every node.
     radial = np.einsum("ij,ij->i", force[:, :2], nodes[:, :2] - [20, 15])
     assert (radial > 0).all() and np.abs(force[:, 2]).max() == 0
+
+
+def test_edge_force_is_minus_the_gradient_in_model_space():
+    # The image placed with pixel (x, y) at origin + pixel_size * (x, y): the force at each node is
+    # -grad_p P / pixel_size at the node's pixel (the chain rule), with no z component.
+    potential = dnurbs.image_edge_potential(dnurbs.Image(disk_image()), 1.5, 2.0)
+    origin, size = np.array([-1.0, 0.5, 0.0]), 0.1
+    angles = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    pixels = np.column_stack([20 + 7.5 * np.cos(angles), 15 + 7.5 * np.sin(angles)])
+    nodes = np.column_stack([origin[:2] + size * pixels, 0 * angles])
+    system = dnurbs.System()
+    system.add_model(dnurbs.Snake(nodes, closed=True, tension=0.1))
+    assert dnurbs.add_edge_force(system, 0, potential, origin=origin, pixel_size=size) == 0
+    force = system.applied_forces().reshape(-1, 3)
+    # (the node positions round-trip through the frame to the pixels up to round-off)
+    np.testing.assert_allclose(force[:, :2], -potential.gradient(pixels) / size, rtol=1e-10,
+                               atol=1e-12)
+    assert np.abs(force[:, 2]).max() == 0 and np.abs(force).max() > 0.1
+    # A volume's force has all three components; pixel_size may differ per axis.
+    ball = np.zeros((12, 12, 12))
+    z, y, x = np.mgrid[0:12, 0:12, 0:12]
+    ball[(x - 6) ** 2 + (y - 6) ** 2 + (z - 6) ** 2 <= 16] = 1.0
+    volume = dnurbs.volume_edge_potential(dnurbs.Volume(ball), 1.0)
+    voxels = np.column_stack([6 + 4 * np.cos(angles), 6 + 4 * np.sin(angles), 7.5 + 0 * angles])
+    nodes = voxels * [0.5, 0.5, 1.0]
+    system = dnurbs.System()
+    system.add_model(dnurbs.Snake(nodes, closed=True, tension=0.1))
+    dnurbs.add_edge_force(system, 0, volume, pixel_size=(0.5, 0.5, 1.0))
+    force = system.applied_forces().reshape(-1, 3)
+    np.testing.assert_allclose(force, -volume.gradient(voxels) / [0.5, 0.5, 1.0], rtol=1e-10,
+                               atol=1e-12)
+    assert np.abs(force[:, 2]).min() > 1e-3
+    with pytest.raises(dnurbs.Error, match="spacing x = 0"):
+        dnurbs.add_edge_force(system, 0, volume, pixel_size=0.0)
