@@ -4,6 +4,8 @@
 
 #include "dnurbs/io/scene_image_force.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -172,6 +174,40 @@ TEST(SnakeOnRing, TheSnakeSettlesOnTheRingsOuterEdge) {
               radii.minCoeff(), radii.maxCoeff());
   EXPECT_NEAR(radii.mean(), 26.0 - 4.0 / 52.0, 0.15);  // measured 25.864
   EXPECT_LT(radii.maxCoeff() - radii.minCoeff(), 0.5);
+}
+
+TEST(SuperquadricInVolume, TheSuperquadricFitsTheBall) {
+  // examples/scenes/superquadric_in_volume.json: an ellipsoid (semi-axes 1.15, 0.85, 1.1, centre
+  // off by 0.12) pulled by the edges of sphere.nrrd, a ball of radius R = 10 voxels about voxel
+  // (16.2, 15.9, 16.1), 0.1 model units per voxel. In 3-D the edge strength |grad(G_sigma * V)|
+  // of a ball peaks sigma^2 / R inside its surface (sigma = 2 voxels: 0.4 voxels), so every
+  // point of the fitted surface lies at 9.6 voxels from the ball's centre. The tolerance, 0.05
+  // voxel, covers the voxel coverage rendering, the tricubic interpolation and the weak shape
+  // springs (stiffness 0.01 against an edge force of order 1); measured 9.584..9.597 voxels.
+  SceneSimulation simulation(read_scene_file(kScenes / "superquadric_in_volume.json"));
+  for (int step = 0; step < simulation.scene().step_count(); ++step) {
+    simulation.step();
+  }
+  const Model& blob = simulation.system().model(0);
+  const Eigen::VectorXd q = simulation.system().coordinates(0);
+  const ParameterDomain domain = blob.parameter_domain(q);
+  const Eigen::Vector3d centre =
+      Eigen::Vector3d(-1.6, -1.6, -1.6) + 0.1 * Eigen::Vector3d(16.2, 15.9, 16.1);
+  double nearest = 1e9;
+  double farthest = 0.0;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j < 16; ++j) {
+      const Eigen::Vector2d u(domain.u_min + (domain.u_max - domain.u_min) * i / 8.0,
+                              domain.v_min + (domain.v_max - domain.v_min) * j / 16.0);
+      const double distance = (blob.position(q, u) - centre).norm() / 0.1;
+      nearest = std::min(nearest, distance);
+      farthest = std::max(farthest, distance);
+    }
+  }
+  std::printf("superquadric in volume: distances to the ball's centre %.4f..%.4f voxels\n", nearest,
+              farthest);
+  EXPECT_NEAR(nearest, 10.0 - 0.4, 0.05);
+  EXPECT_NEAR(farthest, 10.0 - 0.4, 0.05);
 }
 
 }  // namespace
