@@ -26,6 +26,24 @@ int first_non_finite(const Eigen::VectorXd& x) {
   return -1;
 }
 
+// The massless limit (Terzopoulos 2003, section 2.6: mu = 0, D qd + K q = f) has no acceleration
+// to solve for: implicit Euler with M = 0 is exactly backward Euler of the first-order flow
+// (A = dt D + dt^2 K, q_new = q + dt v_new), while Newmark needs M^-1 for its initial acceleration
+// and the central scheme degenerates to two interleaved implicit-Euler sequences of step 2 dt.
+// A constant mass matrix without entries marks a massless model.
+void refuse_massless_models(const System& system, IntegratorScheme scheme) {
+  for (int i = 0; i < system.model_count(); ++i) {
+    const Model& model = system.model(i);
+    const ModelMatrices* matrices =
+        model.matrices_are_constant() ? model.constant_matrices() : nullptr;
+    if (matrices != nullptr && matrices->mass.nonZeros() == 0) {
+      throw make_error("the ", to_string(scheme), " integrator cannot step model ", i,
+                       ": its mass matrix is zero (mass density mu = 0, the first-order flow ",
+                       "D qd + K q = f); step it with implicit-euler");
+    }
+  }
+}
+
 }  // namespace
 
 bool automatic_newton_applies(const IntegratorSettings& settings, const System& system) {
@@ -285,6 +303,9 @@ void Integrator::step(System& system, double dt) {
   const IntegratorScheme scheme = settings_.scheme;
   const double t = system.time();
   w.coefficients = step_coefficients(settings_, t, dt);
+  if (scheme != IntegratorScheme::kImplicitEuler) {
+    refuse_massless_models(system, scheme);
+  }
   if (scheme == IntegratorScheme::kNewmark && !system.accelerations_valid()) {
     initial_acceleration(system);
   }

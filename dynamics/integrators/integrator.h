@@ -151,7 +151,9 @@ class Integrator {
 
   /// Advances `system` by dt. Throws Error naming dt if dt <= 0 or not finite, and Error (state
   /// untouched) if the step produces a non-finite coordinate, velocity or acceleration or the
-  /// effective matrix cannot be factored.
+  /// effective matrix cannot be factored. A constant model whose mass matrix has no entries (the
+  /// massless flow D qd + K q = f of Terzopoulos 2003, section 2.6) is stepped by implicit-euler
+  /// alone, as exactly backward Euler; central and newmark throw Error naming the scheme.
   void step(System& system, double dt);
 
   /// Installs a hook that solves each step's linear system (nullptr restores the default).
