@@ -51,6 +51,8 @@ Checkpoint checkpoint_from_dict(const py::dict& values);
 void bind_superquadric(py::module_& module);
 /// dnurbs.Grid, flat_grid_positions, TerzopoulosSurface, PdeSurface and Snake.
 void bind_grid_models(py::module_& module);
+/// dnurbs.GeneralizedSpline (dynamics/grid/generalized_spline.h).
+void bind_generalized_spline(py::module_& module);
 /// dnurbs.SwungSurface, the swung prototypes, refine_swung_surface and DNurbsSwungSurface.
 void bind_swung(py::module_& module);
 /// dnurbs.Triangulation, TriangularBSplineBasis, TriangularNurbsSurface and

@@ -21,6 +21,7 @@ PYBIND11_MODULE(_dnurbs, module) {
   bind_model(module);
   bind_superquadric(module);
   bind_grid_models(module);
+  bind_generalized_spline(module);
   bind_swung(module);
   bind_triangular(module);
   bind_system(module);
