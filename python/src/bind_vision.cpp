@@ -1,7 +1,8 @@
 // The vision kernel (vision/): dnurbs.Image and dnurbs.Volume with their files, Gaussian
 // smoothing, edge potentials P = -c |grad(G_sigma * I)|, contours, the topology-adaptive T-snakes
 // and T-surfaces (McInerney & Terzopoulos, T-snakes: topology adaptive snakes, Medical Image
-// Analysis 4, 2000), and image forces on snakes and grid surfaces (dynamics/grid/snake.h;
+// Analysis 4, 2000), Kalman snakes (Terzopoulos & Szeliski, Tracking with Kalman snakes, 1992),
+// and image forces on snakes and grid surfaces (dynamics/grid/snake.h;
 // Terzopoulos, Deformable Models, eqs. 1.3-1.5).
 //
 // Images cross as NumPy arrays of shape (height, width), pixel [y, x] (row y, column x); volumes
@@ -15,6 +16,7 @@
 #include "dnurbs/dynamics/grid/snake.h"
 #include "dnurbs/vision/contour.h"
 #include "dnurbs/vision/gaussian_filter.h"
+#include "dnurbs/vision/kalman_snake.h"
 #include "dnurbs/vision/t_snake.h"
 #include "dnurbs/vision/t_surface.h"
 #include "python/src/bindings.h"
@@ -370,11 +372,148 @@ void bind_image_forces(py::module_& module) {
       "The same for a VolumeEdgePotential: voxel (x, y, z) at origin + pixel_size * (x, y, z).");
 }
 
+// The parameters of Kalman snakes and their edge search from keyword arguments; Error naming an
+// unknown key.
+KalmanSnakeParameters kalman_parameters(const py::kwargs& options) {
+  KalmanSnakeParameters parameters;
+  for (const auto& [key, value] : options) {
+    const auto name = py::cast<std::string>(key);
+    double* field = name == "mass"                        ? &parameters.mass
+                    : name == "damping"                   ? &parameters.damping
+                    : name == "tension"                   ? &parameters.tension
+                    : name == "rigidity"                  ? &parameters.rigidity
+                    : name == "time_step"                 ? &parameters.time_step
+                    : name == "acceleration_variance"     ? &parameters.acceleration_variance
+                    : name == "initial_position_variance" ? &parameters.initial_position_variance
+                    : name == "initial_velocity_variance" ? &parameters.initial_velocity_variance
+                                                          : nullptr;
+    if (field == nullptr) {
+      throw make_error("unknown parameter \"", name,
+                       "\" (mass, damping, tension, rigidity, time_step, acceleration_variance, "
+                       "initial_position_variance, initial_velocity_variance)");
+    }
+    *field = py::cast<double>(value);
+  }
+  return parameters;
+}
+
+EdgeSearchParameters edge_search(const Image& frame, const py::kwargs& options) {
+  EdgeSearchParameters search;
+  search.width = frame.width();
+  search.height = frame.height();
+  for (const auto& [key, value] : options) {
+    const auto name = py::cast<std::string>(key);
+    if (name == "width" || name == "height") {
+      (name == "width" ? search.width : search.height) = py::cast<int>(value);
+      continue;
+    }
+    double* field = name == "sigma"               ? &search.sigma
+                    : name == "half_window"       ? &search.half_window
+                    : name == "sample_step"       ? &search.sample_step
+                    : name == "min_edge_strength" ? &search.min_edge_strength
+                    : name == "variance"          ? &search.variance
+                                                  : nullptr;
+    if (field == nullptr) {
+      throw make_error("unknown edge search parameter \"", name,
+                       "\" (width, height, sigma, half_window, sample_step, min_edge_strength, "
+                       "variance)");
+    }
+    *field = py::cast<double>(value);
+  }
+  return search;
+}
+
+void bind_kalman_snake(py::module_& module) {
+  py::class_<KalmanSnake>(
+      module, "KalmanSnake",
+      "A closed snake of N >= 3 nodes tracked by a Kalman filter (Terzopoulos & Szeliski 1992): "
+      "the system model is the snake's step (eq 1.13) with white acceleration noise, the state "
+      "(4N) [u_x, v_x, u_y, v_y] of node positions u and velocities v in pixel units.")
+      .def(py::init([](const py::object& rest_shape, const py::object& initial_positions,
+                       const py::object& initial_velocities, const py::kwargs& options) {
+             const Contour rest = matrix_from_array(rest_shape, "rest_shape", -1, 2);
+             const Contour start =
+                 initial_positions.is_none()
+                     ? rest
+                     : Contour(matrix_from_array(initial_positions, "initial_positions", -1, 2));
+             const Eigen::MatrixX2d velocity =
+                 initial_velocities.is_none()
+                     ? Eigen::MatrixX2d(Eigen::MatrixX2d::Zero(rest.rows(), 2))
+                     : Eigen::MatrixX2d(
+                           matrix_from_array(initial_velocities, "initial_velocities", -1, 2));
+             return KalmanSnake(rest, start, velocity, kalman_parameters(options));
+           }),
+           py::arg("rest_shape"), py::arg("initial_positions") = py::none(),
+           py::arg("initial_velocities") = py::none(),
+           "rest_shape (N, 2); initial positions (N, 2) (default the rest shape) and velocities "
+           "(N, 2) (default 0); keyword parameters mass, damping, tension, rigidity, time_step, "
+           "acceleration_variance, initial_position_variance, initial_velocity_variance.")
+      .def("predict", &KalmanSnake::predict, "The prediction x <- A x + b, P <- A P A^T + Q.")
+      .def(
+          "update",
+          [](KalmanSnake& self, const py::object& measured, double variance) {
+            self.update(Contour(matrix_from_array(measured, "measured_positions", -1, 2)),
+                        variance);
+          },
+          py::arg("measured_positions"), py::arg("variance"),
+          "The update with every node's position measured, (N, 2), noise variance per "
+          "coordinate.")
+      .def(
+          "update_normals",
+          [](KalmanSnake& self, const std::vector<int>& nodes, const py::object& normals,
+             const py::object& positions, const py::object& variances) {
+            const Eigen::MatrixXd n = matrix_from_array(normals, "normals", -1, 2);
+            const auto count = static_cast<long>(nodes.size());
+            if (n.rows() != count) {
+              throw make_error("normals has ", n.rows(), " rows for ", count, " nodes");
+            }
+            const Eigen::VectorXd z = vector_from_array(positions, "positions", count);
+            const Eigen::VectorXd r = vector_from_array(variances, "variances", count);
+            std::vector<NormalMeasurement> measurements;
+            for (long j = 0; j < count; ++j) {
+              measurements.push_back(
+                  {nodes[static_cast<std::size_t>(j)], n.row(j).transpose(), z[j], r[j]});
+            }
+            self.update(measurements);
+          },
+          py::arg("nodes"), py::arg("normals"), py::arg("positions"), py::arg("variances"),
+          "The update with scalar measurements z_j = normals[j] . u_nodes[j]: nodes (M), unit "
+          "normals (M, 2), positions (M), variances (M).")
+      .def(
+          "track",
+          [](KalmanSnake& self, const Image& frame, const py::kwargs& options) {
+            return self.track(frame, edge_search(frame, options));
+          },
+          py::arg("frame"),
+          "Predict, search the frame along the predicted normals for the strongest edge of "
+          "-|grad(G_sigma * I)| and update; returns the number of nodes that found one. "
+          "Keyword parameters width, height (default the frame's), sigma, half_window, "
+          "sample_step, min_edge_strength, variance.")
+      .def_property_readonly(
+          "positions", [](const KalmanSnake& self) { return array_from_matrix(self.positions()); },
+          "The node positions, (N, 2).")
+      .def_property_readonly(
+          "velocities",
+          [](const KalmanSnake& self) { return array_from_matrix(self.velocities()); },
+          "The node velocities, (N, 2).")
+      .def_property_readonly(
+          "covariance",
+          [](const KalmanSnake& self) { return array_from_matrix(self.covariance()); },
+          "The state covariance, (4N, 4N).")
+      .def(
+          "node_covariance",
+          [](const KalmanSnake& self, int i) { return array_from_matrix(self.node_covariance(i)); },
+          py::arg("i"), "The covariance of node i's position, (2, 2).")
+      .def_property_readonly("axes_separable", &KalmanSnake::axes_separable,
+                             "True while the covariance is I_2 (x) P_s (no normal measurement).");
+}
+
 }  // namespace
 
 void bind_vision(py::module_& module) {
   bind_images(module);
   bind_t_snakes(module);
+  bind_kalman_snake(module);
   bind_image_forces(module);
 }
 
