@@ -17,8 +17,8 @@
 
 #include <Eigen/Geometry>
 
+#include "dnurbs/dynamics/grid/kalman_snake.h"
 #include "dnurbs/vision/image.h"
-#include "dnurbs/vision/kalman_snake.h"
 #include "examples/example_arguments.h"
 
 namespace {

@@ -13,10 +13,10 @@
 #include <pybind11/stl.h>
 
 #include "dnurbs/dynamics/core/image_force.h"
+#include "dnurbs/dynamics/grid/kalman_snake.h"
 #include "dnurbs/dynamics/grid/snake.h"
 #include "dnurbs/vision/contour.h"
 #include "dnurbs/vision/gaussian_filter.h"
-#include "dnurbs/vision/kalman_snake.h"
 #include "dnurbs/vision/t_snake.h"
 #include "dnurbs/vision/t_surface.h"
 #include "python/src/bindings.h"

@@ -1,4 +1,4 @@
-#include "dnurbs/vision/kalman_snake.h"
+#include "dnurbs/dynamics/grid/kalman_snake.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,8 +12,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
-#include "../common/error_message.h"
-#include "vision_test_images.h"
+#include "tests/common/error_message.h"
+#include "tests/vision/vision_test_images.h"
 
 namespace dnurbs {
 namespace {

@@ -14,10 +14,11 @@
 // constant over a step, N(0, acceleration_variance) in every coordinate):
 //   A = [c1 B^-1, c2 B^-1; (c1 B^-1 - I)/dt, c2 B^-1/dt],  b = [B^-1 K u_rest; B^-1 K u_rest/dt],
 //   G = [mu B^-1; mu B^-1/dt],  Q = acceleration_variance G G^T.
-// K is the closed snake's stiffness of eqs 1.8-1.11 with constant w1, w2 (h = 1/N): its rows sum
-// to zero, so a translation of the whole contour is in K's null space. The prior constrains the
-// shape relative to u_rest, not where it is: the rest shape may sit anywhere in the image, and a
-// contour translating at constant velocity is an exact solution of the undamped model.
+// K is the closed snake's stiffness of eqs 1.8-1.11 with constant w1, w2 (h = 1/N), the
+// Snake's (dynamics/grid/snake.h): its rows sum to zero, so a translation of the whole contour
+// is in K's null space. The prior constrains the shape relative to u_rest, not where it is: the
+// rest shape may sit anywhere in the image, and a contour translating at constant velocity is an
+// exact solution of the undamped model.
 //
 // Structure: the stiffness of the 2-D snake is S (x) I_2 (S the N by N scalar matrix), so with
 // the same noise in x and y the x and y filters share A, Q and, for full-position measurements

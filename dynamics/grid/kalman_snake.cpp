@@ -1,4 +1,4 @@
-#include "dnurbs/vision/kalman_snake.h"
+#include "dnurbs/dynamics/grid/kalman_snake.h"
 
 #include <cmath>
 #include <cstddef>
@@ -8,6 +8,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "dnurbs/core/error.h"
+#include "dnurbs/dynamics/grid/snake.h"
 
 namespace dnurbs {
 
@@ -53,39 +54,13 @@ void require_search(const EdgeSearchParameters& search) {
   require_positive(search.variance, "edge search variance");
 }
 
-/// The stiffness of a closed snake with constant w1, w2 (Terzopoulos 2003, eqs 1.8-1.11, h = 1/N,
-/// indices modulo N): the Hessian of E = (1/2) sum_i w1 |u_{i+1} - u_i|^2/h^2 + w2 |u_{i+1} -
-/// 2 u_i + u_{i-1}|^2/h^4, assembled term by term (duplicates summed), which gives the cyclic
-/// pentadiagonal a, b, c of eqs 1.9-1.11 for N >= 5 and the same energy's Hessian for N = 3, 4.
-Eigen::SparseMatrix<double> closed_snake_stiffness(int n, double w1, double w2) {
-  const double h2 = 1.0 / (static_cast<double>(n) * n);
-  const double tension = w1 / h2;
-  const double rigidity = w2 / (h2 * h2);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(13) * n);
-  for (int i = 0; i < n; ++i) {
-    const int next = (i + 1) % n;
-    const int previous = (i + n - 1) % n;
-    // The first difference u_{i+1} - u_i and the second difference u_{i+1} - 2 u_i + u_{i-1}
-    const int first_nodes[2] = {next, i};
-    const double first[2] = {1.0, -1.0};
-    const int second_nodes[3] = {next, i, previous};
-    const double second[3] = {1.0, -2.0, 1.0};
-    for (int a = 0; a < 2; ++a) {
-      for (int b = 0; b < 2; ++b) {
-        triplets.emplace_back(first_nodes[a], first_nodes[b], tension * first[a] * first[b]);
-      }
-    }
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) {
-        triplets.emplace_back(second_nodes[a], second_nodes[b], rigidity * second[a] * second[b]);
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> stiffness(n, n);
-  stiffness.setFromTriplets(triplets.begin(), triplets.end());
-  stiffness.makeCompressed();
-  return stiffness;
+/// The scalar stiffness of a closed snake with constant w1, w2: the Snake's (eqs 1.8-1.11,
+/// h = 1/N, indices modulo N), N by N.
+SparseMatrix closed_snake_stiffness(int n, double w1, double w2) {
+  SnakeMaterial material;
+  material.constant_tension = w1;
+  material.constant_rigidity = w2;
+  return Snake(NodeChain(n, true), NodePositions::Zero(n, 3), material).scalar().stiffness;
 }
 
 void symmetrize(Eigen::MatrixXd& matrix) {
