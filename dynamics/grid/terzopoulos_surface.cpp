@@ -270,11 +270,13 @@ TerzopoulosSurface::ChristoffelCoefficients TerzopoulosSurface::christoffel_coef
     // if 0 <= B <= delta, -1 if -delta < B < 0. The Gamma terms are dropped where D+_ij r is not
     // computable (a zero row of D+_ij), and r_1, r_2 are the central tangents Gamma is computed
     // with, so that at the coefficients' own state n is exactly the unit normal where |B| > delta.
+    // Without normalization (section 4's first attempt, figure 6) |B_ij| = 1: only the sign.
+    const bool normalized = settings_.normal != NormalApproximation::kChristoffelUnnormalized;
     Eigen::VectorXd s(n);
     Eigen::VectorXd computable = Eigen::VectorXd::Zero(n);
     for (int node = 0; node < n; ++node) {
       const double bk = g.curvature(node, c);
-      s[node] = std::abs(bk) > settings_.delta ? 1.0 / bk : (bk >= 0.0 ? 1.0 : -1.0);
+      s[node] = normalized && std::abs(bk) > settings_.delta ? 1.0 / bk : (bk >= 0.0 ? 1.0 : -1.0);
     }
     for (Eigen::Index col = 0; col < dij.outerSize(); ++col) {
       for (SparseMatrix::InnerIterator it(dij, col); it; ++it) {

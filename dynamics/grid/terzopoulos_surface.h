@@ -25,6 +25,14 @@
 //                r_1, r_2 in n are the central tangents Gamma is computed with (the seed writes
 //                D+_k), so that at the coefficients' own state n is exactly the unit normal
 //                where |B| > delta. K is not symmetric.
+//   christoffel_unnormalized
+//                the first attempt of Wu & de Melo, section 4 (their figure 6): the same
+//                operator with |B_ij| = 1 at every node, s = +1 if B >= 0, -1 if B < 0 (eqs
+//                25-26 everywhere; delta is not used), so that at the coefficients' own state n
+//                is |B_ij| times the unit normal. The seed reports a tangential, "rotating"
+//                motion with it after a large reaction force (figure 6) and normalizes (eqs
+//                24-26, figure 8) to avoid it. The normal used for the classic surface's
+//                approximate_normals is the normalized one.
 //
 // Plastic behaviour (the inelastic surfaces of Terzopoulos & Fleischer, SIGGRAPH 1988, whose
 // reference tensors G0, B0 yield): with set_plastic_flow the rest positions r0 flow towards the
@@ -52,6 +60,8 @@ namespace dnurbs {
 enum class NormalApproximation {
   kClassic,      ///< second derivatives r_ij (Wu & de Melo, eq. 21)
   kChristoffel,  ///< Gauss formula with the previous state's Christoffel symbols (eqs 22-26)
+  /// eq 23 with |B_ij| = 1: not normalized, n has length |B_ij| (Wu & de Melo, figure 6)
+  kChristoffelUnnormalized,
 };
 
 /// Uniform material of a Terzopoulos surface (per-node weights: set_node_elasticity).
@@ -66,6 +76,7 @@ struct TerzopoulosMaterial {
 struct TerzopoulosSettings {
   NormalApproximation normal = NormalApproximation::kClassic;
   /// Threshold of eqs 24-26 (> 0); Wu & de Melo: 0.5 suits grids whose cells are almost planar.
+  /// Checked always, used by kChristoffel only.
   double delta = 0.5;
 };
 
@@ -122,7 +133,7 @@ class TerzopoulosSurface : public Model {
   /// The normal estimates of Wu & de Melo, eqs. 24-26 at coordinates q with the coefficients (B,
   /// Christoffel symbols) of the state `previous`, for the pairs 11, 12, 22 (each #nodes by 3).
   /// Where |B_ij| > delta and q = previous this is the unit normal (eq 23); below delta it is
-  /// +-B_ij n (eqs 25-26).
+  /// +-B_ij n (eqs 25-26). With kChristoffelUnnormalized it is |B_ij| n at every node.
   std::array<NodePositions, 3> approximate_normals(ConstVectorRef previous, ConstVectorRef q) const;
 
   // Model -----------------------------------------------------------------------------------

@@ -7,6 +7,23 @@
 
 namespace dnurbs {
 
+namespace {
+
+// The scene value of the key "normal".
+const char* normal_approximation_name(NormalApproximation normal) {
+  switch (normal) {
+    case NormalApproximation::kClassic:
+      return "classic";
+    case NormalApproximation::kChristoffel:
+      return "christoffel";
+    case NormalApproximation::kChristoffelUnnormalized:
+      return "christoffel_unnormalized";
+  }
+  return "classic";
+}
+
+}  // namespace
+
 std::pair<double, std::string> SceneTerzopoulosSurface::memory_estimate() const {
   const double nodes = static_cast<double>(grid.nodes_u) * static_cast<double>(grid.nodes_v);
   const double fill = std::max(1.0, std::log(nodes) / std::log(9e4));
@@ -19,7 +36,7 @@ std::unique_ptr<SceneModelSpec> SceneTerzopoulosSurface::clone() const {
 
 void SceneTerzopoulosSurface::write(JsonOut& model) const {
   model["grid"] = scene_grid_json(grid);
-  model["normal"] = settings.normal == NormalApproximation::kClassic ? "classic" : "christoffel";
+  model["normal"] = normal_approximation_name(settings.normal);
   model["delta"] = settings.delta;
   model["material"] = {{"mass_density", material.mass_density},
                        {"damping_density", material.damping_density},
@@ -46,10 +63,15 @@ std::unique_ptr<SceneModelSpec> read_terzopoulos_surface_scene(const SceneReader
   spec->grid = read_scene_grid(reader, model, path);
   spec->plastic = read_plastic_flow(reader, model, path);
   if (const JsonValue* normal = reader.find(model, "normal")) {
-    spec->settings.normal = reader.choice(*normal, join_json_path(path, "normal"),
-                                          {"classic", "christoffel"}) == "classic"
-                                ? NormalApproximation::kClassic
-                                : NormalApproximation::kChristoffel;
+    const std::string name = reader.choice(*normal, join_json_path(path, "normal"),
+                                           {"classic", "christoffel", "christoffel_unnormalized"});
+    for (const auto approximation :
+         {NormalApproximation::kClassic, NormalApproximation::kChristoffel,
+          NormalApproximation::kChristoffelUnnormalized}) {
+      if (name == normal_approximation_name(approximation)) {
+        spec->settings.normal = approximation;
+      }
+    }
   }
   reader.number_key(model, path, "delta", spec->settings.delta, 0.0, true);
   const JsonValue material =

@@ -87,8 +87,11 @@ TerzopoulosSurface make_terzopoulos(const Grid& grid, const py::object& rest, do
     settings.normal = NormalApproximation::kClassic;
   } else if (normal == "christoffel") {
     settings.normal = NormalApproximation::kChristoffel;
+  } else if (normal == "christoffel_unnormalized") {
+    settings.normal = NormalApproximation::kChristoffelUnnormalized;
   } else {
-    throw make_error("normal is \"", normal, "\", must be classic or christoffel");
+    throw make_error("normal is \"", normal,
+                     "\", must be classic, christoffel or christoffel_unnormalized");
   }
   settings.delta = delta;
   return TerzopoulosSurface(grid, node_positions(rest, "rest", grid.node_count()), material,
@@ -110,8 +113,9 @@ void bind_terzopoulos(py::module_& module) {
            py::arg("xi") = zero2, py::arg("normal") = "classic", py::arg("delta") = 0.5,
            "rest: (#nodes, 3) rest and initial shape; mass_density mu > 0 (mass mu h^2 per "
            "node); damping_density >= 0; eta, xi: (2, 2) symmetric >= 0 resistances to metric "
-           "and curvature change; normal: 'classic' or 'christoffel' (Wu & de Melo, eqs. "
-           "22-26) with threshold delta > 0.")
+           "and curvature change; normal: 'classic', 'christoffel' (Wu & de Melo, eqs. "
+           "22-26) with threshold delta > 0, or 'christoffel_unnormalized' (|B_ij| = 1, their "
+           "figure 6).")
       .def(
           "set_node_elasticity",
           [](T& self, int node, const py::object& eta, const py::object& xi) {
