@@ -31,12 +31,15 @@ int first_non_finite(const Eigen::VectorXd& x) {
 // (A = dt D + dt^2 K, q_new = q + dt v_new), while Newmark needs M^-1 for its initial acceleration
 // and the central scheme degenerates to two interleaved implicit-Euler sequences of step 2 dt.
 // A constant mass matrix without entries marks a massless model.
+bool is_massless(const Model& model) {
+  const ModelMatrices* matrices =
+      model.matrices_are_constant() ? model.constant_matrices() : nullptr;
+  return matrices != nullptr && matrices->mass.nonZeros() == 0;
+}
+
 void refuse_massless_models(const System& system, IntegratorScheme scheme) {
   for (int i = 0; i < system.model_count(); ++i) {
-    const Model& model = system.model(i);
-    const ModelMatrices* matrices =
-        model.matrices_are_constant() ? model.constant_matrices() : nullptr;
-    if (matrices != nullptr && matrices->mass.nonZeros() == 0) {
+    if (is_massless(system.model(i))) {
       throw make_error("the ", to_string(scheme), " integrator cannot step model ", i,
                        ": its mass matrix is zero (mass density mu = 0, the first-order flow ",
                        "D qd + K q = f); step it with implicit-euler");
@@ -136,6 +139,15 @@ void predict(const System& system, bool newmark, double dt, Integrator::Workspac
   w.v_pred = system.velocities();
   for (const int index : fixed) {
     w.v_pred[index] = 0.0;
+  }
+  // A massless model's velocity carries no state (D v_new + K (q + dt v_new) = f does not involve
+  // v): its predictor stays at q, where the explicit forces are evaluated. Extrapolating with the
+  // last velocity would evaluate them at q + dt v, which makes the flow settle off its
+  // equilibrium, in a two-step cycle.
+  for (int i = 0; i < system.model_count(); ++i) {
+    if (is_massless(system.model(i))) {
+      w.v_pred.segment(system.velocity_offset(i), system.model(i).velocity_count()).setZero();
+    }
   }
   w.increment = dt * w.v_pred;
   if (newmark) {
