@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "dnurbs/constraints/target_trajectory.h"
+#include "dnurbs/dynamics/core/data_force.h"
 #include "dnurbs/dynamics/core/forces.h"
 #include "dnurbs/dynamics/core/spring.h"
 #include "dnurbs/dynamics/core/system.h"
@@ -37,6 +38,27 @@ VectorOfTime vector_of_time(const py::object& value, const std::string& name) {
     };
   }
   return [constant = vector3(value, name)](double) -> Eigen::Vector3d { return constant; };
+}
+
+// Data points (N, 3), constant or a Python function of time returning (N, 3).
+PointsOfTime points_of_time(const py::object& value) {
+  if (PyCallable_Check(value.ptr()) != 0) {
+    return [function = py::reinterpret_borrow<py::function>(value)](double time) {
+      const py::gil_scoped_acquire gil;
+      return Eigen::MatrixX3d(matrix_from_array(function(time), "points(t)", -1, 3));
+    };
+  }
+  return [constant = Eigen::MatrixX3d(matrix_from_array(value, "points", -1, 3))](double) {
+    return constant;
+  };
+}
+
+DataForceSettings data_force_settings(double stiffness, int search_segments, int refinement_steps) {
+  DataForceSettings settings;
+  settings.stiffness = stiffness;
+  settings.search_segments = search_segments;
+  settings.refinement_steps = refinement_steps;
+  return settings;
 }
 
 Spring make_spring(const py::object& u, const py::object& target, double stiffness, double start,
@@ -185,6 +207,21 @@ void bind_system_forces(py::class_<System>& system) {
           "velocity). Explicit: its damping is not in the step matrix. Curves feel none. "
           "Returns the force's index.")
       .def(
+          "add_data_force",
+          [](System& self, int i, const py::object& points, double stiffness, int search_segments,
+             int refinement_steps, double start, double end) {
+            return self.add_force(
+                i, windowed(moving_data_force(
+                                points_of_time(points),
+                                data_force_settings(stiffness, search_segments, refinement_steps)),
+                            start, end));
+          },
+          py::arg("i"), py::arg("points"), py::arg("stiffness"), py::arg("search_segments") = 24,
+          py::arg("refinement_steps") = 30, py::arg("start") = 0.0, py::arg("end") = kForever,
+          "Data forces (Terzopoulos & Metaxas 1991): each of the points (N, 3), or points(t) (a "
+          "function of time returning (N, 3): tracking), pulls the nearest material point of "
+          "model i with a spring of this stiffness. Returns the force's index.")
+      .def(
           "add_control_point_force",
           [](System& self, int i, std::vector<int> points, const py::object& force, double start,
              double end) {
@@ -236,6 +273,26 @@ void bind_system(py::module_& module) {
       "it clones its models.");
   bind_system_state(system);
   bind_system_forces(system);
+  module.def(
+      "nearest_material_points",
+      [](const Model& model, const py::object& q, const py::object& points, int search_segments,
+         int refinement_steps) {
+        const Eigen::VectorXd coordinates = vector_from_array(q, "q", model.coordinate_count());
+        const auto nearest =
+            nearest_material_points(model, coordinates, matrix_from_array(points, "points", -1, 3),
+                                    data_force_settings(1.0, search_segments, refinement_steps));
+        Eigen::MatrixXd parameters(static_cast<Eigen::Index>(nearest.size()), 2);
+        Eigen::MatrixXd positions(static_cast<Eigen::Index>(nearest.size()), 3);
+        for (size_t k = 0; k < nearest.size(); ++k) {
+          parameters.row(static_cast<Eigen::Index>(k)) = nearest[k].parameter.transpose();
+          positions.row(static_cast<Eigen::Index>(k)) = nearest[k].position.transpose();
+        }
+        return py::make_tuple(array_from_matrix(parameters), array_from_matrix(positions));
+      },
+      py::arg("model"), py::arg("q"), py::arg("points"), py::arg("search_segments") = 24,
+      py::arg("refinement_steps") = 30,
+      "The material points of `model` at q nearest to points (N, 3): (parameters (N, 2), "
+      "positions (N, 3)), the search of System.add_data_force.");
 }
 
 }  // namespace dnurbs::python
