@@ -3,7 +3,8 @@
 
 Reads the CSV files of `dnurbs-bench --out DIR` (work_precision.csv, richardson.csv, scaling.csv,
 scaling_fit.csv, machine.csv, needs.csv) and, if present in the same directory, springs.csv
-(spring_step_bench), free_weights.csv (free_step_bench), evaluation.csv
+(spring_step_bench), free_weights.csv (free_step_bench), terzopoulos_normals.csv
+(normal_step_bench), evaluation.csv
 (`evaluation_bench --out DIR`) and hardcase.xml (`test_hardcase --gtest_output=xml:DIR/hardcase.xml`).
 Writes log-log PNGs (work_precision_<family>.png, scaling.png) into --plots and the tables into
 --markdown.
@@ -189,6 +190,24 @@ def floor_section(rows, run_rows):
     return "\n".join(text)
 
 
+def terzopoulos_normals_section(rows):
+    """The normal-approximation step table of normal_step_bench (bench/terzopoulos/README.md)."""
+    text = ["\n## Terzopoulos surface: cost of the normal\n",
+            "normal_step_bench: the paper sheet of Wu & de Melo (figures 5 and 7; clamped unit "
+            "square, eta_ii = 0.1, xi = 7e-7, gamma = 0.5, a normal load of 0.01 at the centre), "
+            "the seed's semi-implicit step (dt = 0.005) after 50 steps into the pressed state, "
+            "with the classic normal (eq 21), the Christoffel normal (eqs 22-26) and the "
+            "unnormalized one (|B_ij| = 1). Medians of interleaved single steps, ratios to the "
+            "classic step from one run.\n"]
+    text.append(table(["side", "nodes", "classic [s/step]", "christoffel [s/step]",
+                       "unnormalized [s/step]", "christoffel / classic",
+                       "unnormalized / classic"],
+                      [[r["side"], r["nodes"], fmt(r["classic_s"]), fmt(r["christoffel_s"]),
+                        fmt(r["unnormalized_s"]), fmt(r["christoffel_over_classic"]),
+                        fmt(r["unnormalized_over_classic"])] for r in rows]))
+    return "\n".join(text)
+
+
 def hardcase_table(path):
     """Tests that recorded `measure` (RecordProperty: a <testcase> attribute in older GoogleTest,
     a <properties><property> child in newer), with value, bound and whether the test passed."""
@@ -276,6 +295,8 @@ def main():
         md.append(free_weights_section(read_csv(data("free_weights.csv"))))
     if os.path.exists(data("floor.csv")) and os.path.exists(data("floor_run.csv")):
         md.append(floor_section(read_csv(data("floor.csv")), read_csv(data("floor_run.csv"))))
+    if os.path.exists(data("terzopoulos_normals.csv")):
+        md.append(terzopoulos_normals_section(read_csv(data("terzopoulos_normals.csv"))))
     if os.path.exists(data("evaluation.csv")):
         md.append("\n## Evaluation\n")
         columns = ["evaluator", "degree", "rational", "evaluations_per_second", "ratio_to_occt",
