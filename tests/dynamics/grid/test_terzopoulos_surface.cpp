@@ -215,10 +215,11 @@ TEST(TerzopoulosSurface, UnnormalizedNormalIsBTimesTheUnitNormal) {
   // Wu & de Melo, section 4, first attempt (|B_ij| = 1, figure 6): the Gauss formula's bracket
   // is B_ij n at the coefficients' own state, so the unnormalized estimate is |B_ij| n at every
   // node, the normalized one (eqs 24-26, delta = 0.5) n above delta and the same |B_ij| n below
-  // it. On the paraboloid a = 2 (B_11 from 3.2 to 4.0) the unnormalized normal is up to 4 times
-  // as long, and its bending force (flat rest shape, xi = 1e-3) is 2.08 times the normalized
-  // one's (the Weingarten terms of eq 22 do not depend on n); at a = -0.05 (|B| < 0.1 < delta)
-  // the two are the same operator, bit for bit. Identities of the discrete quantities: 1e-12.
+  // it. On the paraboloid a = 2 (B_11 = 4 / |r_u x r_v|, about 1.8 to 4.0) the unnormalized normal
+  // is up to 4 times as long, and its bending force (flat rest shape, xi = 1e-3) is 2.08 times the
+  // normalized one's (the Weingarten terms of eq 22 do not depend on n); at a = -0.05 (|B| < 0.1 <
+  // delta) the two are the same operator, bit for bit. Identities of the discrete quantities:
+  // 1e-12.
   const Grid grid(9, 9, 0.1);
   for (const double a : {2.0, -0.05}) {
     const NodePositions shape = paraboloid(grid, a);
