@@ -1,6 +1,7 @@
 #include "dnurbs/io/scene_registry.h"
 
 #include "dnurbs/io/scene_constraints.h"
+#include "dnurbs/io/scene_data_force.h"
 #include "dnurbs/io/scene_forces.h"
 #include "dnurbs/io/scene_image_force.h"
 
@@ -57,6 +58,7 @@ const std::vector<SceneForceType>& scene_force_types() {
       {"pressure", &read_pressure},
       {"wind", &read_wind},
       {"image_potential", &read_image_potential},
+      {"data_points", &read_data_points},
   };
   return types;
 }

@@ -131,7 +131,7 @@ TEST(SceneRegistry, BuiltInTypesAreListedInOrder) {
   ASSERT_GE(names.size(), 6u);
   EXPECT_STREQ(names[0], "dnurbs_curve");
   EXPECT_STREQ(names[5], "snake");
-  EXPECT_EQ(type_names(scene_force_types()).size(), 7u);
+  EXPECT_EQ(type_names(scene_force_types()).size(), 8u);
   EXPECT_EQ(type_names(scene_constraint_types()).size(), 6u);
 }
 
