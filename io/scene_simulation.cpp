@@ -268,7 +268,14 @@ void SceneSimulation::add_models() {
         fail(scene_, indexed("models", i) + ".boundary.local_sculpting_margin", error.what());
       }
     }
-    system_.add_model(*model);
+    const int index = system_.add_model(*model);
+    try {
+      spec.spec->add_model_forces(system_, index);
+    } catch (const Error& error) {
+      fail(scene_, indexed("models", i), error.what());
+    }
+    force_labels_.resize(static_cast<size_t>(system_.force_count()),
+                         indexed("models", i) + " (" + spec.spec->type() + ")");
     // Curves are meshed as tubes of one radius for the whole run (frames do not flicker)
     tube_radii_.push_back(model->parametric_dimension() == 1
                               ? curve_tube_radius(*model, model->initial_coordinates())

@@ -49,6 +49,9 @@ class SceneModelSpec {
   /// The library model (boundary conditions are applied by the caller). Throws Error with the
   /// library's message when it rejects a value, or when a fit is pending.
   virtual std::unique_ptr<Model> build() const = 0;
+  /// Adds the forces that the type's own keys define (the PDE surface's force regions) to model
+  /// `model` of `system`, after the model is added. Default: none.
+  virtual void add_model_forces(System& /*system*/, int /*model*/) const {}
   /// An estimate of the memory the built model and its step will need, checked before it is
   /// built (core/memory_budget.h), with the key to lower: {bytes, key}. Default {0, ""}: models
   /// whose size is bounded by their shape file or keys.

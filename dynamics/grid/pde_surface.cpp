@@ -63,19 +63,35 @@ void PdeSurface::choose_active_nodes(const std::vector<DeformationRegion>& regio
     boxes.push_back({0, nu - 1, 0, nv - 1});
   }
   for (const DeformationRegion& region : regions) {
-    if (!(region.deformation_radius > 0.0) || !std::isfinite(region.deformation_radius) ||
-        !region.centre.allFinite()) {
+    if (region.box) {
+      if (region.box->isEmpty() || !region.box->min().allFinite() ||
+          !region.box->max().allFinite()) {
+        throw make_error("box region from (", region.box->min().x(), ", ", region.box->min().y(),
+                         ", ", region.box->min().z(), ") to (", region.box->max().x(), ", ",
+                         region.box->max().y(), ", ", region.box->max().z(),
+                         ") is empty or not finite");
+      }
+    } else if (!(region.deformation_radius > 0.0) || !std::isfinite(region.deformation_radius) ||
+               !region.centre.allFinite()) {
       throw make_error("deformation radius ", region.deformation_radius,
                        " is not positive and finite (or its centre is not finite)");
     }
     std::array<int, 4> box{nu, -1, nv, -1};
     for (int k = 0; k < n; ++k) {
-      if ((rest_.row(k).transpose() - region.centre).norm() < region.deformation_radius) {
+      const Eigen::Vector3d at = rest_.row(k).transpose();
+      if (region.box ? region.box->contains(at)
+                     : (at - region.centre).norm() < region.deformation_radius) {
         const auto [i, j] = grid_.node(k);
         box = {std::min(box[0], i), std::max(box[1], i), std::min(box[2], j), std::max(box[3], j)};
       }
     }
     if (box[1] - box[0] < 2 || box[3] - box[2] < 2) {
+      if (region.box) {
+        throw make_error("box region from (", region.box->min().x(), ", ", region.box->min().y(),
+                         ", ", region.box->min().z(), ") to (", region.box->max().x(), ", ",
+                         region.box->max().y(), ", ", region.box->max().z(),
+                         ") spans fewer than the 3 by 3 nodes it needs");
+      }
       throw make_error("deformation region of radius ", region.deformation_radius, " around (",
                        region.centre.x(), ", ", region.centre.y(), ", ", region.centre.z(),
                        ") spans fewer than the 3 by 3 nodes it needs");

@@ -9,10 +9,11 @@
 // D = gamma h^2 I, K = h^2 (b D_uuuu + c D_uuvv + d D_vvvv) and a point force acts on its node.
 //
 // Deformation regions (Romero 2005, section 5): around each force centre the nodes closer than the
-// deformation radius (at rest) define a (u, v) index box; nodes strictly inside a box are
-// simulated, the box border is the boundary (held at rest) and everything outside is fixed and
-// costs nothing: the model's coordinates are only the active nodes. Several regions make the
-// union of their boxes; no region simulates the whole grid inside its border.
+// deformation radius (at rest), or the nodes inside an axis-aligned box (figure 12), define a
+// (u, v) index box; nodes strictly inside a box are simulated, the box border is the boundary
+// (held at rest) and everything outside is fixed and costs nothing: the model's coordinates are
+// only the active nodes. Several regions make the union of their boxes; no region simulates the
+// whole grid inside its border. Force regions and moving forces: dynamics/grid/pde_force_region.h.
 //
 // Boundary conditions at the region border: the boundary node stays at rest and the ghost node
 // beyond it is r(-1) = r(1) - 2 h s n0 (central difference), so that the inward derivative of the
@@ -33,6 +34,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "dnurbs/dynamics/core/model.h"
 #include "dnurbs/dynamics/core/plastic_flow.h"
@@ -58,10 +60,13 @@ struct PdeSurfaceMaterial {
   double tangent_v1 = 0.0;
 };
 
-/// A deformation region: the nodes within `deformation_radius` of `centre` at rest.
+/// A deformation region: the nodes within `deformation_radius` of `centre` at rest, or, for a box
+/// region (Romero 2005, figure 12: "the squared deform region"), the nodes whose rest position lies
+/// in the axis-aligned `box` (faces included; centre and radius are then unused).
 struct DeformationRegion {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double deformation_radius = 1.0;
+  std::optional<Eigen::AlignedBox3d> box = std::nullopt;
 };
 
 /// The PDE surface as a Model. Coordinates q = [r_a0, r_a1, ...], the positions of the active
@@ -69,8 +74,9 @@ struct DeformationRegion {
 class PdeSurface : public Model {
  public:
   /// Throws Error naming the value for a grid under 3 by 3 nodes, a non-finite rest position, a
-  /// negative or non-finite coefficient, rho <= 0, a radius <= 0 or a region without an interior
-  /// node (Romero 2005: the region must be at least 3 by 3 nodes).
+  /// negative or non-finite coefficient, rho <= 0, a radius <= 0, a box that is empty or not
+  /// finite, or a region without an interior node (Romero 2005: the region must be at least 3 by
+  /// 3 nodes).
   PdeSurface(const Grid& grid, const NodePositions& rest, const PdeSurfaceMaterial& material = {},
              const std::vector<DeformationRegion>& regions = {});
 

@@ -1,6 +1,8 @@
 #pragma once
 // Scene type "pde_surface" (docs/scene-format.md): the dynamic PDE surface
-// (dynamics/grid/pde_surface.h) on a flat grid, with its deformation regions.
+// (dynamics/grid/pde_surface.h) on a flat grid, with its deformation regions: a centre and a
+// deformation radius or a box, each with an optional force region (force radius and force) whose
+// centre may move on keyframes (dynamics/grid/pde_force_region.h).
 
 #include <memory>
 #include <optional>
@@ -14,16 +16,32 @@
 
 namespace dnurbs {
 
+/// One entry of "regions": a deformation region around `centre` of `radius` (a moving one sweeps
+/// its path, swept_deformation_regions) or a fixed `box`, and its force region.
+struct ScenePdeRegion {
+  VectorSchedule centre;                   ///< "centre": [x, y, z] or keyframes
+  double radius = 0.0;                     ///< "radius": deformation radius (0 for a box)
+  std::optional<Eigen::AlignedBox3d> box;  ///< "box": {"min": [x, y, z], "max": [x, y, z]}
+  std::optional<double> force_radius;      ///< "force_radius": the force region
+  VectorSchedule force;                    ///< "force": on each node of the force region
+};
+
 struct ScenePdeSurface final : SceneModelSpec {
   SceneGrid grid;
   PdeSurfaceMaterial material;
-  std::vector<DeformationRegion> regions;  ///< "regions": centre and radius
-  std::optional<PlasticFlow> plastic;      ///< "plastic": the rest shape yields
+  std::vector<ScenePdeRegion> regions;  ///< "regions"
+  std::optional<PlasticFlow> plastic;   ///< "plastic": the rest shape yields
+  /// The cost report's naive path (not a key): every grid node simulated, the forces kept.
+  bool whole_grid = false;
 
   std::unique_ptr<SceneModelSpec> clone() const override;
   std::string type() const override { return "pde_surface"; }
   void write(JsonOut& model) const override;
   std::unique_ptr<Model> build() const override;
+  /// The library's deformation regions of `regions` (none with whole_grid).
+  std::vector<DeformationRegion> deformation_regions() const;
+  /// The force regions (pde_force_region) of the regions that have a force radius.
+  void add_model_forces(System& system, int model) const override;
   /// Deformation regions: every grid node.
   std::optional<std::pair<std::unique_ptr<SceneModelSpec>, std::string>> naive_variant()
       const override;
