@@ -173,11 +173,43 @@ void read_integrator(const SceneReader& reader, const JsonValue& integrator,
 
 void read_run(const SceneReader& reader, const JsonValue& root, Scene& scene) {
   const JsonValue& run = reader.require(root, "", "run", "{\"steps\": N} or {\"duration\": T}");
-  reader.object(run, "run", {"steps", "duration"});
+  reader.object(run, "run", {"steps", "duration", "frames", "frame_rate", "substeps"});
   const JsonValue* steps = reader.find(run, "steps");
   const JsonValue* duration = reader.find(run, "duration");
-  if ((steps == nullptr) == (duration == nullptr)) {
-    reader.fail("run", "expected exactly one of \"steps\" and \"duration\"");
+  const JsonValue* frames = reader.find(run, "frames");
+  if (frames != nullptr && (steps != nullptr || duration != nullptr)) {
+    reader.fail("run.frames", "expected \"frames\" without \"steps\" or \"duration\"");
+  }
+  if (frames == nullptr && (steps == nullptr) == (duration == nullptr)) {
+    reader.fail("run", "expected exactly one of \"steps\" and \"duration\" (or \"frames\")");
+  }
+  if (frames == nullptr) {
+    for (const char* key : {"frame_rate", "substeps"}) {
+      if (reader.find(run, key) != nullptr) {
+        reader.fail(join_json_path("run", key), "expected only with \"frames\"");
+      }
+    }
+  } else {
+    // Sub-stepping to a frame rate (Romero 2005, section 4.3): N steps of 1 / (R N) per frame
+    scene.frames = reader.integer(*frames, "run.frames", 1, 100000000);
+    scene.frame_rate =
+        reader.bounded(reader.require(run, "run", "frame_rate", "frames per unit time > 0"),
+                       "run.frame_rate", 0.0, true);
+    scene.substeps = 1;
+    reader.integer_key(run, "run", "substeps", scene.substeps, 1, 100000);
+    if (const JsonValue* integrator = reader.find(root, "integrator");
+        integrator != nullptr && reader.find(*integrator, "dt") != nullptr) {
+      reader.fail("integrator.dt",
+                  "expected no dt with run.frames (it is 1 / (frame_rate substeps))");
+    }
+    if (static_cast<double>(scene.frames) * scene.substeps > 1e8) {
+      reader.fail("run.frames", "expected at most 1e8 steps (frames times substeps)");
+    }
+    scene.steps = scene.frames * scene.substeps;
+    scene.integrator.dt = 1.0 / (scene.frame_rate * scene.substeps);
+    scene.output.log_every = scene.substeps;
+    scene.output.mesh_every = scene.substeps;
+    return;
   }
   if (steps != nullptr) {
     scene.steps = reader.integer(*steps, "run.steps", 1, 100000000);
@@ -404,7 +436,11 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
                         {"newmark_gamma", s.newmark_gamma},
                         {"max_energy", s.max_energy},
                         {"energy_growth", s.energy_growth}};
-  if (scene.steps > 0) {
+  if (scene.frames > 0) {
+    root["run"] = {
+        {"frames", scene.frames}, {"frame_rate", scene.frame_rate}, {"substeps", scene.substeps}};
+    root["integrator"].erase("dt");
+  } else if (scene.steps > 0) {
     root["run"] = {{"steps", scene.steps}};
   } else {
     root["run"] = {{"duration", scene.duration}};

@@ -135,6 +135,13 @@ struct Scene {
   SceneIntegrator integrator;
   int steps = 0;          ///< run length in steps ("run": {"steps": N}) ...
   double duration = 0.0;  ///< ... or in time ("run": {"duration": T}); exactly one is set
+  /// ... or in frames of sub-steps ("run": {"frames": F, "frame_rate": R, "substeps": N}; Romero
+  /// 2005, section 4.3: the solver advances each frame of 1/R in steps): steps = F N and
+  /// integrator.dt = 1 / (R N), and output.log_every and output.mesh_every default to N (a log
+  /// row and a mesh per frame). 0 when the run is given in steps or duration.
+  double frame_rate = 0.0;
+  int substeps = 0;
+  int frames = 0;
   std::vector<SceneProbe> probes;
   SceneOutput output;
   std::optional<SceneDesign> design;  ///< present if the scene has a "design" section

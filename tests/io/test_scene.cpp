@@ -209,6 +209,45 @@ TEST(SceneFile, DurationGivesTheStepCount) {
   EXPECT_EQ(scene.models[0].name, "model0");
 }
 
+TEST(SceneFile, FramesOfSubStepsSetTheStepLogAndMeshRate) {
+  // Romero 2005, section 4.3: each frame of 1/30 is solved in 4 steps of 1/120
+  const std::string text = R"({"models": [{"type": "snake", "nodes": [[0,0,0],[1,0,0],[2,0,0]]}],
+                               "run": {"frames": 3, "frame_rate": 30, "substeps": 4}})";
+  const Scene scene = parse_scene_json(text);
+  EXPECT_EQ(scene.step_count(), 12);
+  EXPECT_EQ(scene.integrator.dt, 1.0 / 120.0);
+  EXPECT_EQ(scene.output.log_every, 4);
+  EXPECT_EQ(scene.output.mesh_every, 4);
+  EXPECT_TRUE(parse_scene_json(scene_to_json(scene)) == scene);
+  SceneSimulation simulation(scene);
+  for (int frame = 1; frame <= 3; ++frame) {
+    for (int s = 0; s < 4; ++s) {
+      simulation.step();
+    }
+    EXPECT_EQ(simulation.steps_done(), 4 * frame);
+    // frame / 30 after 4 frame additions of 1/120 each: round-off of a few ulps
+    EXPECT_NEAR(simulation.system().time(), frame / 30.0, 1e-15);
+  }
+  const auto error = [](const std::string& run, const std::string& integrator = "") {
+    try {
+      parse_scene_json(R"({"models": [{"type": "snake", "nodes": [[0,0,0],[1,0,0],[2,0,0]]}],)" +
+                       integrator + R"("run": )" + run + "}");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(error(R"({"frames": 3, "substeps": 4})"), HasSubstr("run.frame_rate: missing key"));
+  EXPECT_THAT(error(R"({"frames": 3, "frame_rate": 0})"), HasSubstr("run.frame_rate"));
+  EXPECT_THAT(error(R"({"frames": 3, "frame_rate": 30, "substeps": 0})"),
+              HasSubstr("run.substeps"));
+  EXPECT_THAT(error(R"({"steps": 3, "substeps": 4})"), HasSubstr("run.substeps"));
+  EXPECT_THAT(error(R"({"steps": 3, "frames": 4, "frame_rate": 30})"),
+              HasSubstr("run.frames: expected \"frames\" without"));
+  EXPECT_THAT(error(R"({"frames": 3, "frame_rate": 30})", R"("integrator": {"dt": 0.1},)"),
+              HasSubstr("integrator.dt"));
+}
+
 TEST(SceneFile, SchedulesHoldConstantsAndInterpolateKeyframes) {
   VectorSchedule constant;
   constant.values = {Eigen::Vector3d(1, 2, 3)};
