@@ -74,18 +74,6 @@ class SheetSetup {
   SemiImplicitStepper stepper_;
 };
 
-const char* name(NormalApproximation normal) {
-  switch (normal) {
-    case NormalApproximation::kClassic:
-      return "classic";
-    case NormalApproximation::kChristoffel:
-      return "christoffel";
-    case NormalApproximation::kChristoffelUnnormalized:
-      return "christoffel_unnormalized";
-  }
-  return "";
-}
-
 int run(const Options& options) {
   const std::vector<NormalApproximation> normals{NormalApproximation::kClassic,
                                                  NormalApproximation::kChristoffel,
@@ -113,7 +101,8 @@ int run(const Options& options) {
           << seconds[2] << "," << seconds[1] / seconds[0] << "," << seconds[2] / seconds[0] << "\n";
     }
   }
-  std::printf("normals timed: %s, %s, %s\n", name(normals[0]), name(normals[1]), name(normals[2]));
+  std::printf("normals timed: %s, %s, %s\n", to_string(normals[0]), to_string(normals[1]),
+              to_string(normals[2]));
   return 0;
 }
 

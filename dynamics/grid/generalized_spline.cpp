@@ -9,6 +9,7 @@
 
 #include "dnurbs/core/error.h"
 #include "dnurbs/core/kronecker.h"
+#include "dnurbs/dynamics/core/node_interpolation.h"
 
 namespace dnurbs {
 
@@ -364,26 +365,12 @@ std::vector<std::pair<int, double>> interpolation(const std::optional<NodeChain>
 }  // namespace
 
 Eigen::Vector3d GeneralizedSpline::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (const auto& [node, weight] : interpolation(chain_, grid_, u)) {
-    x += weight * q.segment<3>(3 * node);
-  }
-  return x;
+  return interpolate_nodes(q, interpolation(chain_, grid_, u));
 }
 
 SparseMatrix GeneralizedSpline::position_jacobian(ConstVectorRef /*q*/,
                                                   const Eigen::Vector2d& u) const {
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (const auto& [node, weight] : interpolation(chain_, grid_, u)) {
-    if (weight != 0.0) {
-      for (int c = 0; c < 3; ++c) {
-        triplets.emplace_back(c, 3 * node + c, weight);
-      }
-    }
-  }
-  SparseMatrix jacobian(3, coordinate_count());
-  jacobian.setFromTriplets(triplets.begin(), triplets.end());
-  return jacobian;
+  return node_interpolation_jacobian(interpolation(chain_, grid_, u), coordinate_count());
 }
 
 double GeneralizedSpline::potential_energy(ConstVectorRef q) const {

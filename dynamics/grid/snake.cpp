@@ -8,6 +8,7 @@
 
 #include "dnurbs/core/error.h"
 #include "dnurbs/core/kronecker.h"
+#include "dnurbs/dynamics/core/node_interpolation.h"
 #include "dnurbs/vision/edge_potential.h"
 #include "dnurbs/vision/image.h"
 
@@ -112,25 +113,11 @@ Eigen::VectorXd Snake::initial_coordinates() const {
 }
 
 Eigen::Vector3d Snake::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (const auto& [node, weight] : chain_.linear_weights(u.x())) {
-    x += weight * q.segment<3>(3 * node);
-  }
-  return x;
+  return interpolate_nodes(q, chain_.linear_weights(u.x()));
 }
 
 SparseMatrix Snake::position_jacobian(ConstVectorRef /*q*/, const Eigen::Vector2d& u) const {
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (const auto& [node, weight] : chain_.linear_weights(u.x())) {
-    if (weight != 0.0) {
-      for (int c = 0; c < 3; ++c) {
-        triplets.emplace_back(c, 3 * node + c, weight);
-      }
-    }
-  }
-  SparseMatrix jacobian(3, coordinate_count());
-  jacobian.setFromTriplets(triplets.begin(), triplets.end());
-  return jacobian;
+  return node_interpolation_jacobian(chain_.linear_weights(u.x()), coordinate_count());
 }
 
 void Snake::assemble_matrices(ConstVectorRef /*q*/, ModelMatrices& matrices) const {

@@ -10,8 +10,32 @@
 
 #include "dnurbs/core/error.h"
 #include "dnurbs/core/kronecker.h"
+#include "dnurbs/dynamics/core/node_interpolation.h"
 
 namespace dnurbs {
+
+const char* to_string(NormalApproximation normal) {
+  switch (normal) {
+    case NormalApproximation::kClassic:
+      return "classic";
+    case NormalApproximation::kChristoffel:
+      return "christoffel";
+    case NormalApproximation::kChristoffelUnnormalized:
+      return "christoffel_unnormalized";
+  }
+  return "classic";
+}
+
+NormalApproximation parse_normal_approximation(const std::string& name) {
+  for (const auto normal : {NormalApproximation::kClassic, NormalApproximation::kChristoffel,
+                            NormalApproximation::kChristoffelUnnormalized}) {
+    if (name == to_string(normal)) {
+      return normal;
+    }
+  }
+  throw make_error("normal is \"", name,
+                   "\", must be classic, christoffel or christoffel_unnormalized");
+}
 
 namespace {
 
@@ -381,28 +405,12 @@ Eigen::VectorXd TerzopoulosSurface::initial_coordinates() const {
 }
 
 Eigen::Vector3d TerzopoulosSurface::position(ConstVectorRef q, const Eigen::Vector2d& u) const {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (const auto& [node, weight] : grid_.bilinear_weights(u)) {
-    if (weight != 0.0) {
-      x += weight * q.segment<3>(3 * node);
-    }
-  }
-  return x;
+  return interpolate_nodes(q, grid_.bilinear_weights(u));
 }
 
 SparseMatrix TerzopoulosSurface::position_jacobian(ConstVectorRef /*q*/,
                                                    const Eigen::Vector2d& u) const {
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (const auto& [node, weight] : grid_.bilinear_weights(u)) {
-    if (weight != 0.0) {
-      for (int c = 0; c < 3; ++c) {
-        triplets.emplace_back(c, 3 * node + c, weight);
-      }
-    }
-  }
-  SparseMatrix jacobian(3, coordinate_count());
-  jacobian.setFromTriplets(triplets.begin(), triplets.end());
-  return jacobian;
+  return node_interpolation_jacobian(grid_.bilinear_weights(u), coordinate_count());
 }
 
 void TerzopoulosSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matrices) const {

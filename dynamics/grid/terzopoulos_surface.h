@@ -47,6 +47,8 @@
 #include <memory>
 #include <optional>
 
+#include <string>
+
 #include <Eigen/Core>
 
 #include "dnurbs/dynamics/core/model.h"
@@ -63,6 +65,12 @@ enum class NormalApproximation {
   /// eq 23 with |B_ij| = 1: not normalized, n has length |B_ij| (Wu & de Melo, figure 6)
   kChristoffelUnnormalized,
 };
+
+/// The name of a normal approximation in scene files and Python: "classic", "christoffel" or
+/// "christoffel_unnormalized".
+const char* to_string(NormalApproximation normal);
+/// The approximation named `name` (as to_string); throws Error naming it and the choices.
+NormalApproximation parse_normal_approximation(const std::string& name);
 
 /// Uniform material of a Terzopoulos surface (per-node weights: set_node_elasticity).
 struct TerzopoulosMaterial {

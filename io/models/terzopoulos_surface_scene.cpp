@@ -7,23 +7,6 @@
 
 namespace dnurbs {
 
-namespace {
-
-// The scene value of the key "normal".
-const char* normal_approximation_name(NormalApproximation normal) {
-  switch (normal) {
-    case NormalApproximation::kClassic:
-      return "classic";
-    case NormalApproximation::kChristoffel:
-      return "christoffel";
-    case NormalApproximation::kChristoffelUnnormalized:
-      return "christoffel_unnormalized";
-  }
-  return "classic";
-}
-
-}  // namespace
-
 std::pair<double, std::string> SceneTerzopoulosSurface::memory_estimate() const {
   const double nodes = static_cast<double>(grid.nodes_u) * static_cast<double>(grid.nodes_v);
   const double fill = std::max(1.0, std::log(nodes) / std::log(9e4));
@@ -36,7 +19,7 @@ std::unique_ptr<SceneModelSpec> SceneTerzopoulosSurface::clone() const {
 
 void SceneTerzopoulosSurface::write(JsonOut& model) const {
   model["grid"] = scene_grid_json(grid);
-  model["normal"] = normal_approximation_name(settings.normal);
+  model["normal"] = to_string(settings.normal);
   model["delta"] = settings.delta;
   model["material"] = {{"mass_density", material.mass_density},
                        {"damping_density", material.damping_density},
@@ -65,13 +48,7 @@ std::unique_ptr<SceneModelSpec> read_terzopoulos_surface_scene(const SceneReader
   if (const JsonValue* normal = reader.find(model, "normal")) {
     const std::string name = reader.choice(*normal, join_json_path(path, "normal"),
                                            {"classic", "christoffel", "christoffel_unnormalized"});
-    for (const auto approximation :
-         {NormalApproximation::kClassic, NormalApproximation::kChristoffel,
-          NormalApproximation::kChristoffelUnnormalized}) {
-      if (name == normal_approximation_name(approximation)) {
-        spec->settings.normal = approximation;
-      }
-    }
+    spec->settings.normal = parse_normal_approximation(name);
   }
   reader.number_key(model, path, "delta", spec->settings.delta, 0.0, true);
   const JsonValue material =

@@ -83,16 +83,7 @@ TerzopoulosSurface make_terzopoulos(const Grid& grid, const py::object& rest, do
   material.eta = matrix2(eta, "eta");
   material.xi = matrix2(xi, "xi");
   TerzopoulosSettings settings;
-  if (normal == "classic") {
-    settings.normal = NormalApproximation::kClassic;
-  } else if (normal == "christoffel") {
-    settings.normal = NormalApproximation::kChristoffel;
-  } else if (normal == "christoffel_unnormalized") {
-    settings.normal = NormalApproximation::kChristoffelUnnormalized;
-  } else {
-    throw make_error("normal is \"", normal,
-                     "\", must be classic, christoffel or christoffel_unnormalized");
-  }
+  settings.normal = parse_normal_approximation(normal);
   settings.delta = delta;
   return TerzopoulosSurface(grid, node_positions(rest, "rest", grid.node_count()), material,
                             settings);

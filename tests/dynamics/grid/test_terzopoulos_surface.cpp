@@ -34,18 +34,6 @@ constexpr std::array<NormalApproximation, 3> kApproximations{
     NormalApproximation::kClassic, NormalApproximation::kChristoffel,
     NormalApproximation::kChristoffelUnnormalized};
 
-const char* name(NormalApproximation normal) {
-  switch (normal) {
-    case NormalApproximation::kClassic:
-      return "classic";
-    case NormalApproximation::kChristoffel:
-      return "christoffel";
-    case NormalApproximation::kChristoffelUnnormalized:
-      return "unnormalized";
-  }
-  return "";
-}
-
 struct PaperResult {
   double asymmetry = 0.0;
   test::Drift drift;
@@ -84,7 +72,7 @@ PaperResult run_paper_scene(NormalApproximation normal, double xi) {
   std::printf(
       "paper xi = %g %-11s asymmetry %.3e tangential %.3e rotation %.3e max |B| %.4e "
       "max deflection %.4e\n",
-      xi, name(normal), result.asymmetry, result.drift.tangential, result.drift.rotation,
+      xi, to_string(normal), result.asymmetry, result.drift.tangential, result.drift.rotation,
       result.max_curvature, result.max_deflection);
   return result;
 }
@@ -119,8 +107,9 @@ TEST(TerzopoulosSurface, FlatSheetAtRestStaysAtRestFor10000Steps) {
       integrator.step(common_system, 0.01);
     }
     const Eigen::VectorXd rest = sheet.initial_coordinates();
-    EXPECT_LE((seed_system.coordinates() - rest).cwiseAbs().maxCoeff(), 1e-12) << name(normal);
-    EXPECT_LE((common_system.coordinates() - rest).cwiseAbs().maxCoeff(), 1e-12) << name(normal);
+    EXPECT_LE((seed_system.coordinates() - rest).cwiseAbs().maxCoeff(), 1e-12) << to_string(normal);
+    EXPECT_LE((common_system.coordinates() - rest).cwiseAbs().maxCoeff(), 1e-12)
+        << to_string(normal);
   }
 }
 
@@ -289,8 +278,8 @@ TEST(TerzopoulosSurface, LaggedNormalsConvergeAtFirstOrderInTheStep) {
       }
     }
     const double order = std::log2(error[0] / error[1]);
-    std::printf("%s lagged normal: error %.3e at eps 1e-3, order %.3f\n", name(normal), error[0],
-                order);
+    std::printf("%s lagged normal: error %.3e at eps 1e-3, order %.3f\n", to_string(normal),
+                error[0], order);
     EXPECT_GT(error[1], 1e-8);  // not vacuous
     EXPECT_NEAR(order, 1.0, 0.02);
   }
@@ -481,7 +470,7 @@ TEST(TerzopoulosSurface, SeedStepAndCommonIntegratorsReachTheSameEquilibrium) {
     std::printf(
         "%s equilibrium: deflection %.4e, implicit Euler differs by %.3e, Newmark by "
         "%.3e\n",
-        name(normal), -seed_system.coordinates()[3 * grid.index(4, 4) + 2], euler_difference,
+        to_string(normal), -seed_system.coordinates()[3 * grid.index(4, 4) + 2], euler_difference,
         newmark_difference);
     const double deflection = std::abs(seed_system.coordinates()[3 * grid.index(4, 4) + 2]);
     EXPECT_GT(deflection, 0.1);
@@ -671,7 +660,7 @@ ReactionResult reaction_scene(NormalApproximation normal, double load) {
   std::printf(
       "reaction load %g %-12s pressed %.4f (asymmetry %.3f), spring-back asymmetry %.3f "
       "rotation %.3e, max |B| %.2f\n",
-      load, name(normal), result.pressed_deflection, result.pressed_asymmetry,
+      load, to_string(normal), result.pressed_deflection, result.pressed_asymmetry,
       result.release_asymmetry, result.release_rotation, result.release_curvature);
   return result;
 }
