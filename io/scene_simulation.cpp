@@ -23,9 +23,8 @@
 namespace dnurbs {
 namespace {
 
-// A material parameter of model `index`: within its domain (a D-NURBS knot domain: the model
-// places a point there, which throws naming the value otherwise) and of its dimension (a curve
-// takes [u]: a second parameter is an error rather than silently ignored).
+// A material parameter of model `index`: in its domain (a D-NURBS model throws naming the value
+// otherwise) and of its dimension (a curve takes [u]: a second parameter is an error).
 void check_parameter(const System& system, const std::string& name, int index,
                      const Eigen::Vector2d& at) {
   const Model& model = system.model(index);
@@ -69,9 +68,8 @@ std::unique_ptr<Model> build_model(const SceneModel& spec) {
   return model;
 }
 
-// Local sculpting of model `index` (boundary.local_sculpting_margin >= 0): the parameters and
-// control points its forces and constraints act on; where one acts everywhere on the model
-// (gravity, pressure, a curve on a surface), nothing is frozen.
+// Local sculpting of model `index` (boundary.local_sculpting_margin >= 0): where its forces and
+// constraints act; where one acts everywhere (gravity, pressure, ...), nothing is frozen.
 void freeze_outside_scene_region(const Scene& scene, int index, Model& model) {
   SculptedRegion region;
   bool everywhere = false;
@@ -229,8 +227,7 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   integrator_ = Integrator(settings);
   hash_ = scene_state_hash(scene_);
   budget_ = EnergyBudget({scene_.integrator.energy_growth, scene_.integrator.max_energy});
-  // A state whose energy is not finite (coordinates so large that their squares overflow) is a
-  // fault of the scene: named by model and value, before the budget would only say "nan"
+  // A non-finite energy (coordinates whose squares overflow) is the scene's fault: named now
   for (int i = 0; i < system_.model_count(); ++i) {
     const Model& model = system_.model(i);
     const Eigen::VectorXd q = system_.coordinates(i);
@@ -545,8 +542,7 @@ void SceneSimulation::restore(const Checkpoint& checkpoint, const std::string& s
                      "), got ", checkpoint.scene_hash,
                      ": the checkpoint belongs to another scene or the scene has changed");
   }
-  // The step and time must be those of this run: a step beyond the run or a time that is not
-  // step * dt would resume into a different state than the run that wrote the checkpoint
+  // The step and time must be those of this run, or the resumed state would not be the run's
   if (checkpoint.step > scene_.step_count()) {
     throw make_error(source, ": step: expected a step of this run (0..", scene_.step_count(),
                      "), got ", checkpoint.step);
