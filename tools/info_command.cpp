@@ -106,6 +106,19 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
     out << (type == forces.begin()->first ? " (" : ", ") << count << " " << type;
   }
   out << (forces.empty() ? "" : ")") << "\n";
+  if (!scene.obstacles.empty()) {
+    std::map<std::string, int> obstacles;
+    for (const Obstacle& obstacle : scene.obstacles) {
+      ++obstacles[std::holds_alternative<GroundPlane>(obstacle)   ? "plane"
+                  : std::holds_alternative<BoxObstacle>(obstacle) ? "box"
+                                                                  : "sphere"];
+    }
+    out << "obstacles: " << scene.obstacles.size();
+    for (const auto& [kind, count] : obstacles) {
+      out << (kind == obstacles.begin()->first ? " (" : ", ") << count << " " << kind;
+    }
+    out << "), " << scene.contact.method << " contact\n";
+  }
   std::map<std::string, int> constraints;
   for (const auto& constraint : scene.constraints) {
     ++constraints[constraint.spec->type()];

@@ -145,3 +145,27 @@ def test_grid_surfaces_with_a_plastic_rest_shape_keep_a_dent():
     np.testing.assert_array_equal(sheet.rest_positions, rest)
     with pytest.raises(dnurbs.Error, match="plastic rate 0"):
         sheet.set_plastic_flow(0.1, rate=0.0)
+
+
+def test_unnormalized_christoffel_normal_is_the_normalized_one_times_its_length():
+    # On a paraboloid the Gauss-formula estimates of the normal (Wu & de Melo, eqs 23-26): the
+    # normalized variant has unit length where |B_ij| >= delta, the unnormalized one (|B_ij| = 1,
+    # their figure 6) the same direction and length |B_ij|, so not 1 in general.
+    grid = dnurbs.Grid(7, 7, 0.25)
+    rest = dnurbs.flat_grid_positions(grid)
+    bumped = rest.copy()
+    bumped[:, 2] = 2.0 * ((rest[:, 0] - 0.75) ** 2 + (rest[:, 1] - 0.75) ** 2)
+    q = bumped.reshape(-1)
+    normalized = dnurbs.TerzopoulosSurface(grid, rest, normal="christoffel", delta=0.5)
+    unnormalized = dnurbs.TerzopoulosSurface(grid, rest, normal="christoffel_unnormalized")
+    estimates = zip(normalized.approximate_normals(q, q), unnormalized.approximate_normals(q, q))
+    for n, u in estimates:
+        lengths = np.linalg.norm(u, axis=1)
+        unit = np.linalg.norm(n, axis=1)
+        shown = lengths > 0.5  # where |B_ij| >= delta: the normalized estimate is a unit vector
+        if not shown.any():  # B_12 = 0 on this paraboloid: both estimates vanish
+            assert np.abs(n).max() == 0 and np.abs(u).max() == 0
+            continue
+        np.testing.assert_allclose(unit[shown], 1.0, atol=1e-12)
+        np.testing.assert_allclose(np.cross(n[shown], u[shown]), 0.0, atol=1e-12)
+        assert np.abs(lengths[shown] - 1.0).max() > 0.1

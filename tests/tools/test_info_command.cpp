@@ -53,6 +53,15 @@ TEST(InfoCommand, DescribesTriangularDNurbsSurfaces) {
   EXPECT_THAT(info.out, HasSubstr("x, y, z share one scalar matrix (S (x) I_3)"));
   EXPECT_THAT(info.out, HasSubstr("saved: fixed weights (naive: free weights)"));
   EXPECT_THAT(info.out, HasSubstr("forces: 3 (1 pressure, 2 spring)"));
+  EXPECT_THAT(info.out, ::testing::Not(HasSubstr("obstacles:")));  // it has none
+}
+
+TEST(InfoCommand, ListsTheObstaclesAndTheContactMethod) {
+  // The rug falls on a ground plane, a box and a sphere, with projection contact
+  const testing::CommandResult info =
+      testing::run_dnurbs("info " + (kExamples / "rug_on_obstacles.json").string());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("obstacles: 3 (1 box, 1 plane, 1 sphere), projection contact"));
 }
 
 }  // namespace
