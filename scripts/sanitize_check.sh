@@ -23,7 +23,11 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 # Open CASCADE's process-lifetime allocations (scripts/lsan_suppressions.txt)
 export LSAN_OPTIONS="suppressions=$root/scripts/lsan_suppressions.txt"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-(cd "$build" && ctest -L "^(io|sculpt)$" --output-on-failure --parallel "$jobs")
+# Whole-scene physics runs that read no more input than the scene tests before them are left to
+# the optimized build: under the sanitizers the data-force tracking run alone takes 170 s of the
+# 220 s (its 300 steps search 200 nearest points each), and it checks motion, not input handling
+physics_runs="^SuperquadricTracksPoints\\."
+(cd "$build" && ctest -L "^(io|sculpt)$" -E "$physics_runs" --output-on-failure --parallel "$jobs")
 dnurbs="$build/tools/dnurbs"
 corpus="$root/tests/data/bad_scenes"
 count=0
