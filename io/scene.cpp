@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <utility>
 
+#include "dnurbs/core/content_hash.h"
 #include "dnurbs/core/error.h"
 #include "dnurbs/core/input_file.h"
 #include "dnurbs/io/animated_gltf.h"
@@ -363,6 +362,7 @@ Scene read_scene(const SceneReader& reader, const JsonValue& root) {
   if (const JsonValue* design = reader.find(root, "design")) {
     read_design(reader, *design, scene.design.emplace());
   }
+  scene.input_digests = reader.input_digests();
   return scene;
 }
 
@@ -525,15 +525,12 @@ std::string scene_to_json(const Scene& scene) {
 }
 
 std::string scene_state_hash(const Scene& scene) {
-  const std::string text = scene_json(scene, false).dump();
-  std::uint64_t hash = 14695981039346656037ULL;  // FNV-1a 64 offset basis
-  for (const unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ULL;  // FNV prime
+  std::string text = scene_json(scene, false).dump();
+  for (const std::string& digest : scene.input_digests) {
+    text += '\n';
+    text += digest;
   }
-  char buffer[17];
-  std::snprintf(buffer, sizeof(buffer), "%016llx", static_cast<unsigned long long>(hash));
-  return buffer;
+  return content_hash(text);
 }
 
 }  // namespace dnurbs

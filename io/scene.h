@@ -128,6 +128,9 @@ struct SceneDesign {
 struct Scene {
   std::string source = "<string>";  ///< file name (messages); not written
   std::filesystem::path directory;  ///< relative file names resolve here; not written
+  /// "<file>=<content hash>" of every data file the scene read (shape files, images, points;
+  /// SceneReader::input_digests); not written, but part of the state hash
+  std::vector<std::string> input_digests;
   std::string description;
   std::vector<SceneModel> models;
   std::vector<SceneForce> forces;
@@ -168,8 +171,9 @@ Scene parse_scene_json(const std::string& text, const std::string& source = "<st
 Scene read_scene_file(const std::filesystem::path& path);
 /// The scene as JSON text (every key; numbers round-trip exactly).
 std::string scene_to_json(const Scene& scene);
-/// A hash (16 hex digits, FNV-1a 64) of everything that determines the simulated state (the
-/// scene without "output" and "description"): checkpoints carry it.
+/// A hash (16 hex digits, FNV-1a 64) of everything that determines the simulated state: the
+/// scene without "output" and "description", and the content of the data files it read
+/// (input_digests), so that an edited image or point file changes it. Checkpoints carry it.
 std::string scene_state_hash(const Scene& scene);
 
 }  // namespace dnurbs

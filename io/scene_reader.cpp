@@ -4,7 +4,9 @@
 
 #include <utility>
 
+#include "dnurbs/core/content_hash.h"
 #include "dnurbs/core/error.h"
+#include "dnurbs/core/input_file.h"
 #include "dnurbs/io/json_messages.h"
 #include "dnurbs/io/output_path.h"
 
@@ -44,7 +46,15 @@ SceneReader::SceneReader(std::string source, std::filesystem::path directory)
 
 std::filesystem::path SceneReader::resolve(const std::string& file) const {
   std::filesystem::path path = file;
-  return path.is_relative() ? directory_ / path : path;
+  path = path.is_relative() ? directory_ / path : path;
+  std::string digest;
+  try {
+    digest = content_hash(read_input_file(path, "scene data file"));
+  } catch (const Error&) {
+    digest = "unreadable";
+  }
+  input_digests_.push_back(file + "=" + digest);
+  return path;
 }
 
 void SceneReader::fail(const std::string& path, const std::string& message) const {

@@ -31,8 +31,12 @@ class SceneReader {
 
   const std::string& source() const { return source_; }
   const std::filesystem::path& directory() const { return directory_; }
-  /// `file` resolved against directory() when relative.
+  /// `file` resolved against directory() when relative. Every data file of a scene is found
+  /// through here, so it also records "<file>=<content hash of its bytes>" (or
+  /// "<file>=unreadable"; the file's own reader then names the failure) in input_digests().
   std::filesystem::path resolve(const std::string& file) const;
+  /// The records of resolve(), in call order.
+  const std::vector<std::string>& input_digests() const { return input_digests_; }
 
   /// Throws Error "<source>: <path>: <message>" ("(top level)" for the empty path).
   [[noreturn]] void fail(const std::string& path, const std::string& message) const;
@@ -111,6 +115,8 @@ class SceneReader {
 
   std::string source_;
   std::filesystem::path directory_;
+  // Written by resolve(): the readers of every scene part take the reader by const reference
+  mutable std::vector<std::string> input_digests_;
 };
 
 /// Model references of forces, constraints and probes: an index or a model name.

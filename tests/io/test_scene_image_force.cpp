@@ -98,6 +98,27 @@ TEST(SceneImagePotential, KeysAreReadWrittenBackAndAddTheLibraryForce) {
   EXPECT_NE(scene_state_hash(changed), scene_state_hash(scene));
 }
 
+TEST(SceneImagePotential, TheStateHashFollowsTheImagesContentNotOnlyItsName) {
+  // A checkpoint is refused for another scene by the state hash: an image edited between the run
+  // and the resume must change it, though the scene's JSON (which names the file) is the same
+  // (its own folder: the other tests read data_folder()'s disc.png at the same time)
+  const auto folder = std::filesystem::temp_directory_path() / "dnurbs_scene_image_hash";
+  std::filesystem::create_directories(folder);
+  write_png(testing::coverage_image(24, 20, testing::disc({12, 10}, 6.0)),
+            (folder / "disc.png").string());
+  const std::string text = snake_scene(R"json([{"type": "image_potential", "model": 0,
+      "image": "disc.png", "sigma": 1}])json");
+  const Scene scene = parse_scene_json(text, "s.json", folder);
+  ASSERT_EQ(scene.input_digests.size(), 1U);
+  EXPECT_THAT(scene.input_digests[0], HasSubstr("disc.png="));
+  EXPECT_EQ(scene_state_hash(parse_scene_json(text, "s.json", folder)), scene_state_hash(scene));
+  write_png(testing::coverage_image(24, 20, testing::disc({12, 10}, 5.0)),
+            (folder / "disc.png").string());
+  const Scene edited = parse_scene_json(text, "s.json", folder);
+  EXPECT_EQ(scene_to_json(edited), scene_to_json(scene));
+  EXPECT_NE(scene_state_hash(edited), scene_state_hash(scene));
+}
+
 TEST(SceneImagePotential, VolumesTakeTheirSpacingFromTheFile) {
   const auto folder = data_folder();
   const Scene scene = parse_scene_json(snake_scene(R"json([{"type": "image_potential",
