@@ -122,8 +122,13 @@ def face_points(parameters, nodes):
     z -= p["eye_socket"] * mirrored_pair(u, v, EYE_OFFSET, EYE_V, 0.06, 0.045)
     z += 0.5 * p["eye_socket"] * mirrored_pair(u, v, EYE_OFFSET, EYE_V, 0.035, 0.022)
     # The nose: a ridge from between the eyes to the tip, the tip, the nostril wings
-    ridge = np.clip((0.62 - v) / (0.62 - NOSE_TIP_V), 0.0, 1.0)
-    along = np.where(v >= NOSE_TIP_V, 0.35 + 0.55 * ridge, 0.9 * np.exp(-0.5 * ((v - NOSE_TIP_V) / 0.02) ** 2))
+    # (the ridge's height rises from 0.35 of the nose's between the eyes to 0.9 at the tip, and
+    # fades within about 0.03 above the eyes and below the tip)
+    bridge_v = 0.62
+    ridge = np.clip((bridge_v - v) / (bridge_v - NOSE_TIP_V), 0.0, 1.0)
+    along = np.where(v >= NOSE_TIP_V, 0.35 + 0.55 * ridge,
+                     0.9 * np.exp(-0.5 * ((v - NOSE_TIP_V) / 0.02) ** 2))
+    along = np.where(v > bridge_v, 0.35 * np.exp(-0.5 * ((v - bridge_v) / 0.03) ** 2), along)
     z += p["nose_height"] * along * np.exp(-0.5 * ((u - MIDLINE) / (0.5 * p["nose_width"])) ** 2)
     z += 0.1 * p["nose_height"] * gaussian(u, v, MIDLINE, NOSE_TIP_V, p["nose_width"], 0.025)
     z += 0.2 * p["nose_height"] * mirrored_pair(u, v, 0.045, NOSE_TIP_V - 0.01, 0.02, 0.02)

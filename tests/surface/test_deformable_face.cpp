@@ -280,12 +280,12 @@ TEST(DeformableFace, RetargetingAppliesTheSameDisplacementsToEveryIndividual) {
           std::max(largest_rest_distance, (ada.point(rest, u, v) - cleo.point(rest, u, v)).norm());
     }
   }
-  // The expression moves points by up to about 10 mm; the two faces at rest differ by 15.94 mm
+  // The expression moves points by up to about 10 mm; the two faces at rest differ by 15.455 mm
   // (measured), at least the 10.35 mm by which cleo's forehead top (y = height / 2 at v = 1,
   // heights 196.13 and 175.42 mm) is higher than ada's
   EXPECT_GT(largest_displacement, 5.0);
   EXPECT_GT(largest_rest_distance, 10.35);
-  EXPECT_NEAR(largest_rest_distance, 15.94, 0.01);
+  EXPECT_NEAR(largest_rest_distance, 15.455, 0.001);
   std::printf("largest displacement %.4f mm, rest faces %.4f mm apart\n", largest_displacement,
               largest_rest_distance);
 }
