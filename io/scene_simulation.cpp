@@ -19,6 +19,7 @@
 #include "dnurbs/dynamics/core/sculpted_region.h"
 #include "dnurbs/io/json_messages.h"
 #include "dnurbs/io/scene_fit.h"
+#include "dnurbs/io/scene_prescribed.h"
 
 namespace dnurbs {
 namespace {
@@ -40,11 +41,7 @@ void check_parameter(const System& system, const std::string& name, int index,
 }
 
 std::string indexed(const char* list, size_t i) {
-  std::string path = list;
-  path += '[';
-  path += std::to_string(i);
-  path += ']';
-  return path;
+  return std::string(list) + '[' + std::to_string(i) + ']';
 }
 
 [[noreturn]] void fail(const Scene& scene, const std::string& path, const std::string& message) {
@@ -325,6 +322,9 @@ void SceneSimulation::step() {
     system_.restore_flowing_rest_coordinates(rest);
   };
   const double dt = scene_.integrator.dt;
+  if (prescribe_scene_coordinates(scene_.models, system_, time + dt)) {
+    budget_.start(system_);  // keyed coordinates moved (io/scene_prescribed.h): the state jumped
+  }
   try {
     if (solver_.constraint_count() > 0) {
       solver_.step(integrator_, system_, dt);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -52,6 +53,13 @@ class SceneModelSpec {
   /// Adds the forces that the type's own keys define (the PDE surface's force regions) to model
   /// `model` of `system`, after the model is added. Default: none.
   virtual void add_model_forces(System& /*system*/, int /*model*/) const {}
+  /// The coordinates whose values the scene prescribes at `time` instead of the dynamics (the
+  /// keyed parameters of a deformation field model), as (coordinate index, value) pairs, for
+  /// models whose coordinates are their velocities; the built model holds them fixed
+  /// (io/scene_prescribed.h sets them). Default: none.
+  virtual std::vector<std::pair<int, double>> prescribed_coordinates(double /*time*/) const {
+    return {};
+  }
   /// An estimate of the memory the built model and its step will need, checked before it is
   /// built (core/memory_budget.h), with the key to lower: {bytes, key}. Default {0, ""}: models
   /// whose size is bounded by their shape file or keys.
