@@ -279,6 +279,17 @@ void planar_curve_rates(const PlanarCurveSample& s, const PlanarControlNet& rate
 // -----------------------------------------------------------------------------------------------
 // Swung Jacobians
 
+Eigen::Vector3d swung_point_derivative(const Eigen::Matrix<double, 2, 3>& profile_point,
+                                       const Eigen::Matrix<double, 2, 3>& trajectory_point,
+                                       double alpha, int quantity) {
+  const int k = kOrderU[static_cast<size_t>(quantity)];
+  const int l = kOrderV[static_cast<size_t>(quantity)];
+  const double f = profile_point(0, k);
+  const double h = profile_point(1, k);
+  const double in_z = l == 0 ? 1.0 : 0.0;  // only S^(k,0) has a z component
+  return {alpha * f * trajectory_point(0, l), alpha * f * trajectory_point(1, l), in_z * h};
+}
+
 void swung_jacobian(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,
                     double alpha, const SwungLayout& layout, int order, SwungJacobian& jacobian) {
   const int quantities = quantities_of_order(order);
@@ -305,13 +316,12 @@ void swung_jacobian(const PlanarCurveSample& profile, const PlanarCurveSample& t
     const int k = kOrderU[static_cast<size_t>(quantity)];
     const int l = kOrderV[static_cast<size_t>(quantity)];
     const double f = profile.point(0, k);
-    const double h = profile.point(1, k);
     const Eigen::Vector2d g = trajectory.point.col(l);
     const double in_z = l == 0 ? 1.0 : 0.0;  // only S^(k,0) has a z component
     auto& columns = jacobian.columns[static_cast<size_t>(quantity)];
     columns.setZero(3, jacobian.column_count);
     jacobian.point_derivatives[static_cast<size_t>(quantity)] =
-        Eigen::Vector3d(alpha * f * g.x(), alpha * f * g.y(), in_z * h);
+        swung_point_derivative(profile.point, trajectory.point, alpha, quantity);
     for (int a = 0; a < np; ++a) {
       const double r = profile.rational(k, a);
       columns.block<2, 1>(0, per * a) = alpha * r * g;

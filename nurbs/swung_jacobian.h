@@ -121,6 +121,15 @@ struct SwungJacobian {
   std::array<Eigen::Vector3d, 6> point_derivatives;  ///< S^Q
 };
 
+/// S^Q = (alpha f g_x, alpha f g_y, [l == 0] h) of quantity Q = (k, l) (SurfaceQuantity, 0..5)
+/// from the curves' points and derivatives (PlanarCurveSample::point of a profile sample at u,
+/// columns (p_x, p_z)^(d), and of a trajectory sample at v): the point_derivatives of
+/// swung_jacobian, by the same arithmetic, for a state whose samples are no longer at hand (a
+/// rest shape kept as its curves' points at the Gauss points).
+Eigen::Vector3d swung_point_derivative(const Eigen::Matrix<double, 2, 3>& profile_point,
+                                       const Eigen::Matrix<double, 2, 3>& trajectory_point,
+                                       double alpha, int quantity);
+
 /// Combines a profile sample at u and a trajectory sample at v into the Jacobian of quantities
 /// of total order <= order (0..2).
 void swung_jacobian(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory,

@@ -18,21 +18,26 @@ void check_plastic_flow(const PlasticFlow& flow) {
 
 int flow_rest_positions(const PlasticFlow& flow, double dt, int stride,
                         const Eigen::Ref<const Eigen::VectorXd>& q,
-                        Eigen::Ref<Eigen::VectorXd> rest) {
+                        Eigen::Ref<Eigen::VectorXd> rest, int dimension) {
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     throw make_error("plastic flow: time step ", dt, " is not positive and finite");
   }
-  if (stride < 3 || q.size() != rest.size() || q.size() % stride != 0) {
+  if (dimension < 2 || dimension > 3) {
+    throw make_error("plastic flow: a node position of ", dimension,
+                     " coordinates (expected 2 or 3)");
+  }
+  if (stride < dimension || q.size() != rest.size() || q.size() % stride != 0) {
     throw make_error("plastic flow: ", q.size(), " coordinates and ", rest.size(),
                      " rest coordinates are not nodes of ", stride);
   }
   const double fraction = std::min(1.0, flow.rate * dt);
   int yielded = 0;
   for (Eigen::Index offset = 0; offset < q.size(); offset += stride) {
-    const Eigen::Vector3d strain = q.segment<3>(offset) - rest.segment<3>(offset);
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> strain =
+        q.segment(offset, dimension) - rest.segment(offset, dimension);
     const double distance = strain.norm();
     if (distance > flow.yield) {
-      rest.segment<3>(offset) += (fraction * (distance - flow.yield) / distance) * strain;
+      rest.segment(offset, dimension) += (fraction * (distance - flow.yield) / distance) * strain;
       ++yielded;
     }
   }

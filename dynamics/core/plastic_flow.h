@@ -4,7 +4,10 @@
 // yields, the inelastic behaviour of Terzopoulos & Fleischer (Modeling inelastic deformation:
 // viscoelasticity, plasticity, fracture, SIGGRAPH 1988): the reference shape is changed where the
 // deformation exceeds a yield limit. Here the deformation of a node is the distance s = |x - r|
-// of its position x (three coordinates) from its rest position r. Up to `yield` it is elastic;
+// of its position x from its rest position r, both read from a model's coordinate vector and its
+// rest vector: three coordinates of a point in space (grid nodes, control points of a net), or
+// the two in-plane coordinates of a planar curve's control point (the profile and trajectory of a
+// swung surface). Up to `yield` it is elastic;
 // beyond it the rest position flows towards x at `rate` (a viscoplastic rule),
 //   dr/dt = rate (|s| - yield) s / |s|                      where |s| > yield,
 // integrated over a step of dt as
@@ -26,11 +29,11 @@ struct PlasticFlow {
 void check_plastic_flow(const PlasticFlow& flow);
 
 /// One step of dt (> 0) of the rule on every node of `q` and `rest` (the same size, a multiple
-/// of `stride` >= 3): node a's position is entries stride a .. stride a + 2, the others (a free
-/// weight) do not flow. Returns the number of nodes that yielded.
+/// of `stride` >= `dimension`): node a's position is the `dimension` (2 or 3) entries from
+/// stride a on, the others (a free weight) do not flow. Returns the number of nodes that yielded.
 int flow_rest_positions(const PlasticFlow& flow, double dt, int stride,
                         const Eigen::Ref<const Eigen::VectorXd>& q,
-                        Eigen::Ref<Eigen::VectorXd> rest);
+                        Eigen::Ref<Eigen::VectorXd> rest, int dimension = 3);
 
 /// Throws Error naming the size or the first non-finite entry unless `rest` has `size` finite
 /// entries (rest coordinates given back to a model, Model::restore_flowing_rest_coordinates).

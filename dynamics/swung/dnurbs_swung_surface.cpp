@@ -164,6 +164,12 @@ DNurbsSwungSurface::DNurbsSwungSurface(const SwungSurface& surface,
 
   // The outward side of the initial surface (after the gauge: its error names the axis profile)
   orientation_ = swung_normal_orientation(surface);
+
+  // Rest shape and plastic flow (file comment of the header)
+  if (settings.initial_shape_at_rest) {
+    set_rest_shape(initial_coordinates_);
+  }
+  set_plastic_flow(settings.plastic_flow);
 }
 
 // -----------------------------------------------------------------------------------------------
@@ -193,6 +199,15 @@ void DNurbsSwungSurface::quadrature_samples(const ConstVectorRef& q,
   check_size(q, "coordinate");
   quadrature_.sample(layout_, q.data(), profile_weights_.data(), trajectory_weights_.data(),
                      profile, trajectory);
+}
+
+Eigen::Vector3d DNurbsSwungSurface::change_from_rest(const SwungJacobian& jacobian, int i, int j,
+                                                     int quantity) const {
+  const Eigen::Vector3d& value = jacobian.point_derivatives[static_cast<size_t>(quantity)];
+  if (rest_points_.empty()) {
+    return value;
+  }
+  return value - rest_points_.derivative(i, j, surface_.alpha(), quantity);
 }
 
 void DNurbsSwungSurface::jacobian(const ConstVectorRef& q, const Eigen::Vector2d& u, int order,
@@ -250,7 +265,7 @@ void DNurbsSwungSurface::assemble_matrices(ConstVectorRef q, ModelMatrices& matr
     std::vector<PlanarCurveSample> profile;
     std::vector<PlanarCurveSample> trajectory;
     quadrature_samples(q, profile, trajectory);
-    SwungElementAssembly assembly(quadrature_, layout_, surface_.alpha(),
+    SwungElementAssembly assembly(quadrature_, rest_points_, layout_, surface_.alpha(),
                                   surface_.profile().degree(), surface_.trajectory().degree(),
                                   geometric_stiffness_);
     assembly.assemble(profile, trajectory, mass, damping, stiffness);
@@ -291,12 +306,12 @@ void DNurbsSwungSurface::add_internal_force(ConstVectorRef q, VectorRef force) c
       swung_jacobian(profile[static_cast<size_t>(i)], trajectory[static_cast<size_t>(j)],
                      surface_.alpha(), layout_, order, jacobian);
       const double* m = quadrature_.material(i, j);
-      // f_int = -dE/dq = -integral sum_Q k_Q J_Q^T S^Q.
+      // f_int = -dE/dq = -integral sum_Q k_Q J_Q^T (S^Q - S^Q(q_r)).
       for (int quantity = 1; quantity < kQuantityCount; ++quantity) {
         if (quadrature_.has_stiffness(quantity)) {
           add_transposed(jacobian, quantity,
                          -quadrature_.weight(i, j) * m[1 + quantity] *
-                             jacobian.point_derivatives[static_cast<size_t>(quantity)],
+                             change_from_rest(jacobian, i, j, quantity),
                          force);
         }
       }
@@ -326,8 +341,7 @@ double DNurbsSwungSurface::potential_energy(ConstVectorRef q) const {
       double density = 0.0;
       for (int quantity = 1; quantity < kQuantityCount; ++quantity) {
         if (quadrature_.has_stiffness(quantity)) {
-          density += m[1 + quantity] *
-                     jacobian.point_derivatives[static_cast<size_t>(quantity)].squaredNorm();
+          density += m[1 + quantity] * change_from_rest(jacobian, i, j, quantity).squaredNorm();
         }
       }
       energy += 0.5 * quadrature_.weight(i, j) * density;

@@ -11,6 +11,26 @@
 // every state from curve bases cached once (SwungQuadrature, SwungElementAssembly), or, with
 // fixed weights and constant material, closed-form quadratic forms of the curves' 1-D Gram
 // matrices (SwungSeparableForms).
+//
+// Rest shape and plastic flow, as the rational control-net models have them
+// (rational_control_net_model.h) in the swung surface's own coordinates. By default the energy
+// is measured from zero (Terzopoulos, eq. 1.20); with a rest shape q_r (set_rest_shape, a
+// profile and a trajectory with their weights) it is the energy of the change from that shape,
+//   E(q) = 1/2 integral sum_Q k_Q |S^Q(q) - S^Q(q_r)|^2,
+//   f_int = -dE/dq = -integral sum_Q k_Q J_Q(q)^T (S^Q(q) - S^Q(q_r)),
+// so q_r is at rest (f_int(q_r) = 0 exactly: the same arithmetic gives S^Q(q) and S^Q(q_r)), and
+// the step's tangent stiffness K(q) keeps its Gauss-Newton part while its exact second-derivative
+// part weighs S^Q - S^Q(q_r). S is linear in each curve's coordinates (fixed weights) but
+// bilinear in the two, so f_int = -K(q_r) (q - q_r) and E = 1/2 (q - q_r)^T K(q_r) (q - q_r) hold
+// to second and third order in q - q_r, and exactly (fixed weights) when only one curve has left
+// its rest; E depends on the surfaces alone, so the scaling gauge moves nothing. The model keeps
+// q_r as each curve's points and derivatives at its Gauss points (SwungRestPoints; N_u + N_v
+// entries), or, on the separable path, as q_r inside the closed forms. A rest shape that yields
+// (set_plastic_flow, dynamics/core/plastic_flow.h) moves q_r towards q after every committed step:
+// each curve control point's rest position, its two in-plane coordinates (x, z of the profile,
+// X, Y of the trajectory: the trajectory's are scaled by alpha p_x on the surface, so on the unit
+// circle a yield distance there is relative to the radius), flows where it is farther than the
+// yield distance from its position; free weights keep their rest values. So a push leaves a dent.
 
 #include <array>
 #include <memory>
@@ -20,6 +40,7 @@
 #include <Eigen/Core>
 
 #include "dnurbs/dynamics/core/model.h"
+#include "dnurbs/dynamics/core/plastic_flow.h"
 #include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
 #include "dnurbs/dynamics/swung/swung_quadrature.h"
 #include "dnurbs/dynamics/swung/swung_separable_forms.h"
@@ -73,6 +94,14 @@ struct DNurbsSwungSettings {
   /// Gauss-Newton stiffness stayed stable. The internal force -dE/dq is exact either way, so a
   /// step solved to convergence has the same answer with both.
   bool geometric_stiffness = false;
+  /// Measure the energy from the initial shape (set_rest_shape with the initial coordinates), so
+  /// that the surface as built is at rest; false (the default): from zero (Terzopoulos, eq.
+  /// 1.20), under which tension shrinks every swung surface towards its axis.
+  bool initial_shape_at_rest = false;
+  /// A rest shape that yields (file comment): after every step each curve control point's rest
+  /// position flows towards its position beyond the yield distance, so a push leaves a dent.
+  /// Implies a rest shape (the initial shape unless set_rest_shape moves it).
+  std::optional<PlasticFlow> plastic_flow;
   /// Free weights only: a constant inertia added to the diagonal of M for every weight
   /// coordinate (default 0: exact D-NURBS), as DNurbsSettings::weight_inertia. Weights are light
   /// coordinates (their M entries are ~1e-5 of the positions' for the prototypes), so forces
@@ -95,7 +124,8 @@ struct DNurbsSwungSettings {
 /// coordinate couples with every trajectory one) and the curve blocks banded.
 ///
 /// Material per unit parametric area (DNurbsSurfaceMaterial) and the D-NURBS energy of the
-/// tensor-product model (Terzopoulos, eq. 1.20, measured from the zero state):
+/// tensor-product model (Terzopoulos, eq. 1.20, measured from the zero state, or from a rest
+/// shape: file comment):
 ///   M(q) = integral mu J^T J du dv,   D(q) = integral gamma J^T J du dv,
 ///   E(q) = 1/2 integral sum_Q k_Q |S^Q(q)|^2 du dv,
 ///   f_int = -dE/dq = -integral sum_Q k_Q J_Q^T S^Q,
@@ -224,18 +254,41 @@ class DNurbsSwungSurface : public Model {
   /// True if the closed-form separable path is used (DNurbsSwungSettings::separable_assembly).
   bool uses_separable_assembly() const { return separable_; }
 
+  // Rest shape and plastic flow (file comment) ------------------------------------------------
+  /// Makes the surface at coordinates `q_rest` (coordinate_count() entries, finite; free weights
+  /// >= the minimum weight) the rest shape. Throws Error naming the entry otherwise.
+  void set_rest_shape(ConstVectorRef q_rest);
+  /// True once a rest shape is set (set_rest_shape, initial_shape_at_rest or plastic flow).
+  bool has_rest_shape() const { return rest_coordinates_.size() > 0; }
+  /// The rest shape's coordinates (coordinate_count(); empty without a rest shape).
+  const Eigen::VectorXd& rest_coordinates() const { return rest_coordinates_; }
+  /// Makes the rest shape yield by `flow` (checked; a rest shape is set from the initial
+  /// coordinates when there is none), or stop yielding (nullopt; the rest stays where it is).
+  void set_plastic_flow(const std::optional<PlasticFlow>& flow);
+  const std::optional<PlasticFlow>& plastic_flow() const { return plastic_flow_; }
+  /// With plastic flow: the rule on the in-plane coordinates of every curve control point (free
+  /// weights keep their rest values), the rest shape moved when a point yielded; returns the
+  /// points that yielded.
+  int flow_rest_shape(ConstVectorRef q, double dt) override;
+  /// rest_coordinates() with plastic flow, empty without.
+  Eigen::VectorXd flowing_rest_coordinates() const override;
+  void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
+
  private:
   void check_size(const ConstVectorRef& q, const char* what) const;
   // Fixes `coordinates`, releasing the scaling gauge coordinate first if they break the scaling.
   void fix_coordinates(const std::vector<int>& coordinates);
   // Rebuilds the model without the scaling gauge coordinate (the base class has no way to unfix
-  // a coordinate), keeping every other fixed coordinate, and the gauge one if a fix asked for it.
+  // a coordinate), keeping every other fixed coordinate, and the gauge one if a fix asked for it,
+  // and the rest shape and plastic flow as they are.
   void release_gauge();
   // Rational samples of both curves at a parameter / at every Gauss point, at state q.
   void samples_at(const ConstVectorRef& q, const Eigen::Vector2d& u, PlanarCurveSample& profile,
                   PlanarCurveSample& trajectory) const;
   void quadrature_samples(const ConstVectorRef& q, std::vector<PlanarCurveSample>& profile,
                           std::vector<PlanarCurveSample>& trajectory) const;
+  // S^Q - S^Q(q_r) at Gauss point pair (i, j) from the Jacobian there (S^Q without a rest shape).
+  Eigen::Vector3d change_from_rest(const SwungJacobian& jacobian, int i, int j, int quantity) const;
 
   SwungSurface surface_;
   // As given (release_gauge rebuilds the model from them).
@@ -254,6 +307,11 @@ class DNurbsSwungSurface : public Model {
   Eigen::VectorXd profile_weights_;     // the weights when they are not coordinates
   Eigen::VectorXd trajectory_weights_;  // (and the initial ones when they are)
   Eigen::VectorXd initial_coordinates_;
+  // The rest shape (file comment): its coordinates (empty: none) and its curves at the Gauss
+  // points, set by set_rest_shape; the separable forms keep their own copy of q_r.
+  Eigen::VectorXd rest_coordinates_;
+  SwungRestPoints rest_points_;
+  std::optional<PlasticFlow> plastic_flow_;
   // The symmetric pattern of M, D, K (both triangles, values zero), sized once: both curves'
   // span couplings and the dense profile-trajectory block.
   SparseMatrix pattern_;

@@ -41,6 +41,11 @@ void DNurbsSwungSurface::release_gauge() {
   for (const int index : kept) {
     released.fix_coordinate(index);
   }
+  // The rest shape as it is now (set_rest_shape or moved by plastic flow), not as built
+  if (has_rest_shape()) {
+    released.set_rest_shape(rest_coordinates_);
+  }
+  released.plastic_flow_ = plastic_flow_;
   *this = std::move(released);
 }
 

@@ -7,10 +7,11 @@
 namespace dnurbs {
 
 SwungElementAssembly::SwungElementAssembly(const SwungQuadrature& quadrature,
-                                           const SwungLayout& layout, double alpha,
-                                           int profile_degree, int trajectory_degree,
+                                           const SwungRestPoints& rest, const SwungLayout& layout,
+                                           double alpha, int profile_degree, int trajectory_degree,
                                            bool geometric_stiffness)
     : quadrature_(quadrature),
+      rest_(rest),
       layout_(layout),
       alpha_(alpha),
       geometric_stiffness_(geometric_stiffness),
@@ -33,8 +34,11 @@ SwungElementAssembly::SwungElementAssembly(const SwungQuadrature& quadrature,
 }
 
 void SwungElementAssembly::add_point(const PlanarCurveSample& profile,
-                                     const PlanarCurveSample& trajectory, int gu, int gv,
-                                     double weight, const double* material) {
+                                     const PlanarCurveSample& trajectory, int i, int j) {
+  const int gu = i % quadrature_.profile_points_per_span();
+  const int gv = j % quadrature_.trajectory_points_per_span();
+  const double weight = quadrature_.weight(i, j);
+  const double* material = quadrature_.material(i, j);
   swung_jacobian(profile, trajectory, alpha_, layout_, order_, jacobian_);
   // M and D: mu J^T J and gamma J^T J (Terzopoulos, eq. 1.25), as rows sqrt(w mu) J.
   mass_stack_.middleRows(mass_rows_, 3) = std::sqrt(weight * material[0]) * jacobian_.columns[0];
@@ -43,7 +47,8 @@ void SwungElementAssembly::add_point(const PlanarCurveSample& profile,
         std::sqrt(weight * material[1]) * jacobian_.columns[0];
   }
   mass_rows_ += 3;
-  // K: sum_Q k_Q (J_Q^T J_Q + sum_c S^Q_c d^2 S^Q_c / dq^2) (Terzopoulos, eq. 1.20).
+  // K: sum_Q k_Q (J_Q^T J_Q + sum_c (S^Q_c - S^Q_c(q_r)) d^2 S^Q_c / dq^2) (Terzopoulos,
+  // eq. 1.20; the rest term of dnurbs_swung_surface.h).
   for (int quantity = 1; quantity < kQuantityCount; ++quantity) {
     if (!quadrature_.has_stiffness(quantity)) {
       continue;
@@ -55,9 +60,12 @@ void SwungElementAssembly::add_point(const PlanarCurveSample& profile,
     if (!geometric_stiffness_) {
       continue;
     }
+    Eigen::Vector3d change = jacobian_.point_derivatives[static_cast<size_t>(quantity)];
+    if (!rest_.empty()) {
+      change -= rest_.derivative(i, j, alpha_, quantity);
+    }
     swung_hessian_terms(profile, trajectory, alpha_, layout_,
-                        static_cast<SurfaceQuantity>(quantity),
-                        k * jacobian_.point_derivatives[static_cast<size_t>(quantity)], terms_);
+                        static_cast<SurfaceQuantity>(quantity), k * change, terms_);
     profile_factors_.row(factor_rows_) = terms_.profile_gradient.transpose();
     trajectory_factors_.row(factor_rows_) = terms_.trajectory_gradient.transpose();
     ++factor_rows_;
@@ -146,8 +154,7 @@ void SwungElementAssembly::assemble(const std::vector<PlanarCurveSample>& profil
         for (int gv = 0; gv < per_v; ++gv) {
           const int i = su * per_u + gu;
           const int j = sv * per_v + gv;
-          add_point(profile[static_cast<size_t>(i)], trajectory[static_cast<size_t>(j)], gu, gv,
-                    quadrature_.weight(i, j), quadrature_.material(i, j));
+          add_point(profile[static_cast<size_t>(i)], trajectory[static_cast<size_t>(j)], i, j);
         }
       }
       finish(profile, trajectory, su, sv, mass, damping, stiffness);

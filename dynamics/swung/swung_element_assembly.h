@@ -22,28 +22,33 @@ namespace dnurbs {
 /// for the element's columns and Gauss points; use one per assembly (not thread-safe).
 class SwungElementAssembly {
  public:
-  /// `geometric_stiffness` adds sum_c S^Q_c d^2 S^Q_c / dq^2 to the Gauss-Newton part of K.
-  SwungElementAssembly(const SwungQuadrature& quadrature, const SwungLayout& layout, double alpha,
-                       int profile_degree, int trajectory_degree, bool geometric_stiffness);
+  /// `geometric_stiffness` adds sum_c (S^Q_c - S^Q_c(q_r)) d^2 S^Q_c / dq^2 to the Gauss-Newton
+  /// part of K, with the rest shape `rest` at the Gauss points (S^Q(q_r) = 0 when it is empty).
+  /// `quadrature` and `rest` must outlive the assembly.
+  SwungElementAssembly(const SwungQuadrature& quadrature, const SwungRestPoints& rest,
+                       const SwungLayout& layout, double alpha, int profile_degree,
+                       int trajectory_degree, bool geometric_stiffness);
 
   /// Adds, over every Gauss point, to the dense #coordinates square matrices
   ///   mass += integral mu J^T J,  damping += integral gamma J^T J (only if the material has
   ///   damping; `damping` may be empty otherwise),
-  ///   stiffness += integral sum_Q k_Q (J_Q^T J_Q [+ sum_c S^Q_c d^2 S^Q_c / dq^2]),
+  ///   stiffness += integral sum_Q k_Q (J_Q^T J_Q [+ sum_c (S^Q_c - S^Q_c(q_r)) d^2 S^Q_c / dq^2]),
   /// from the rational samples of both curves at their Gauss points (SwungQuadrature::sample).
   void assemble(const std::vector<PlanarCurveSample>& profile,
                 const std::vector<PlanarCurveSample>& trajectory, Eigen::MatrixXd& mass,
                 Eigen::MatrixXd& damping, Eigen::MatrixXd& stiffness);
 
  private:
-  void add_point(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory, int gu,
-                 int gv, double weight, const double* material);
+  // Adds Gauss point pair (i, j) to the element's stacks.
+  void add_point(const PlanarCurveSample& profile, const PlanarCurveSample& trajectory, int i,
+                 int j);
   // Forms the element matrices from the stacks of element (su, sv) and scatters them.
   void finish(const std::vector<PlanarCurveSample>& profile,
               const std::vector<PlanarCurveSample>& trajectory, int su, int sv,
               Eigen::MatrixXd& mass, Eigen::MatrixXd& damping, Eigen::MatrixXd& stiffness);
 
   const SwungQuadrature& quadrature_;
+  const SwungRestPoints& rest_;
   SwungLayout layout_;
   double alpha_ = 1.0;
   bool geometric_stiffness_ = true;

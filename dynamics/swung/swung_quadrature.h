@@ -23,6 +23,21 @@ namespace dnurbs {
 /// k_Q of quantity Q = 1..5 (S_u, S_v, S_uu, S_uv, S_vv): a10, a01, b20, 2 b11, b02.
 inline constexpr int kSwungMaterialStride = 7;
 
+/// A rest shape q_r of a swung surface at the Gauss points: each curve's point and derivatives
+/// c^(d), d = 0..2 (PlanarCurveSample::point, columns d) at every Gauss point of its own direction,
+/// so that S^Q(q_r) at the pair (i, j) is swung_point_derivative(profile[i], trajectory[j],
+/// alpha, Q), N_u + N_v small matrices for N_u N_v points. Empty: no rest shape.
+struct SwungRestPoints {
+  std::vector<Eigen::Matrix<double, 2, 3>> profile;     ///< N_u entries
+  std::vector<Eigen::Matrix<double, 2, 3>> trajectory;  ///< N_v entries
+  bool empty() const { return profile.empty(); }
+  /// S^Q(q_r) at the point pair (i, j).
+  Eigen::Vector3d derivative(int i, int j, double alpha, int quantity) const {
+    return swung_point_derivative(profile[static_cast<size_t>(i)],
+                                  trajectory[static_cast<size_t>(j)], alpha, quantity);
+  }
+};
+
 /// The quadrature points of a swung surface and what is cached at them.
 ///
 /// Caches (built once in the constructor, never invalidated: they depend only on the knots, the

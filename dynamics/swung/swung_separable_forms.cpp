@@ -55,6 +55,17 @@ SwungSeparableForms::SwungSeparableForms(const SwungQuadrature& quadrature,
   for (int q = 1; q < 6; ++q) {
     k_[static_cast<size_t>(q)] = material[1 + q];
   }
+  rest_ = split(Eigen::VectorXd::Zero(layout.coordinate_count()));
+}
+
+void SwungSeparableForms::set_rest(const Eigen::Ref<const Eigen::VectorXd>& q_rest) {
+  rest_ = split(q_rest);
+  has_rest_ = true;
+}
+
+SwungSeparableForms::Split SwungSeparableForms::change(const Split& s) const {
+  return {s.profile_x - rest_.profile_x, s.profile_z - rest_.profile_z,
+          s.trajectory_x - rest_.trajectory_x, s.trajectory_y - rest_.trajectory_y};
 }
 
 SwungSeparableForms::Split SwungSeparableForms::split(
@@ -155,14 +166,22 @@ void SwungSeparableForms::matrices(const Eigen::Ref<const Eigen::VectorXd>& q,
     add_block(kTrajectoryX, kTrajectoryX, k * a2 * fk * bl, stiffness);
     add_block(kTrajectoryY, kTrajectoryY, k * a2 * fk * bl, stiffness);
     const Eigen::VectorXd akx = (cross_factor * k * a2) * (ak * s.profile_x);
-    const Eigen::MatrixXd block_x = akx * (bl * s.trajectory_x).transpose();
-    const Eigen::MatrixXd block_y = akx * (bl * s.trajectory_y).transpose();
+    Eigen::MatrixXd block_x = akx * (bl * s.trajectory_x).transpose();
+    Eigen::MatrixXd block_y = akx * (bl * s.trajectory_y).transpose();
+    if (geometric_stiffness && has_rest_) {
+      // The exact tangent's second-derivative part weighs S^Q - S^Q(q_r) (file comment)
+      const Eigen::VectorXd akx_rest = (k * a2) * (ak * rest_.profile_x);
+      block_x -= akx_rest * (bl * rest_.trajectory_x).transpose();
+      block_y -= akx_rest * (bl * rest_.trajectory_y).transpose();
+    }
     add_profile_trajectory_coupling(block_x, block_y, stiffness);
   }
 }
 
 double SwungSeparableForms::energy(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  // E from the change d = q - q_r, term by term a product with it (file comment).
   const Split s = split(q);
+  const Split d = change(s);
   double energy = 0.0;
   for (int quantity = 1; quantity < 6; ++quantity) {
     const double k = k_[static_cast<size_t>(quantity)];
@@ -171,12 +190,18 @@ double SwungSeparableForms::energy(const Eigen::Ref<const Eigen::VectorXd>& q) c
     }
     const Eigen::MatrixXd& ak = profile_gram_[static_cast<size_t>(kOrderU[quantity])];
     const Eigen::MatrixXd& bl = trajectory_gram_[static_cast<size_t>(kOrderV[quantity])];
-    const double fk = s.profile_x.dot(ak * s.profile_x);
+    const Eigen::VectorXd ak_rest = ak * rest_.profile_x;
+    const Eigen::VectorXd bl_change_x = bl * d.trajectory_x;
+    const Eigen::VectorXd bl_change_y = bl * d.trajectory_y;
     const double gl =
         s.trajectory_x.dot(bl * s.trajectory_x) + s.trajectory_y.dot(bl * s.trajectory_y);
-    energy += 0.5 * k * alpha_ * alpha_ * fk * gl;
+    const double gl_mixed = s.trajectory_x.dot(bl_change_x) + s.trajectory_y.dot(bl_change_y);
+    const double gl_change = d.trajectory_x.dot(bl_change_x) + d.trajectory_y.dot(bl_change_y);
+    energy += 0.5 * k * alpha_ * alpha_ *
+              (d.profile_x.dot(ak * d.profile_x) * gl + 2.0 * d.profile_x.dot(ak_rest) * gl_mixed +
+               rest_.profile_x.dot(ak_rest) * gl_change);
     if (kOrderV[quantity] == 0) {
-      energy += 0.5 * k * length_v_ * s.profile_z.dot(ak * s.profile_z);
+      energy += 0.5 * k * length_v_ * d.profile_z.dot(ak * d.profile_z);
     }
   }
   return energy;
@@ -184,7 +209,9 @@ double SwungSeparableForms::energy(const Eigen::Ref<const Eigen::VectorXd>& q) c
 
 void SwungSeparableForms::add_internal_force(const Eigen::Ref<const Eigen::VectorXd>& q,
                                              Eigen::Ref<Eigen::VectorXd> force) const {
+  // -dE/dq of the energy above, every term a product with the change d = q - q_r.
   const Split s = split(q);
+  const Split d = change(s);
   for (int quantity = 1; quantity < 6; ++quantity) {
     const double k = k_[static_cast<size_t>(quantity)];
     if (k == 0.0) {
@@ -193,16 +220,22 @@ void SwungSeparableForms::add_internal_force(const Eigen::Ref<const Eigen::Vecto
     const Eigen::MatrixXd& ak = profile_gram_[static_cast<size_t>(kOrderU[quantity])];
     const Eigen::MatrixXd& bl = trajectory_gram_[static_cast<size_t>(kOrderV[quantity])];
     const Eigen::VectorXd akx = ak * s.profile_x;
+    const Eigen::VectorXd ak_change = ak * d.profile_x;
+    const Eigen::VectorXd ak_rest = ak * rest_.profile_x;
     const Eigen::VectorXd blx = bl * s.trajectory_x;
     const Eigen::VectorXd bly = bl * s.trajectory_y;
-    const double fk = s.profile_x.dot(akx);
+    const Eigen::VectorXd bl_change_x = bl * d.trajectory_x;
+    const Eigen::VectorXd bl_change_y = bl * d.trajectory_y;
     const double gl = s.trajectory_x.dot(blx) + s.trajectory_y.dot(bly);
+    const double gl_mixed = s.trajectory_x.dot(bl_change_x) + s.trajectory_y.dot(bl_change_y);
     const double c = -k * alpha_ * alpha_;
-    add_vector(kProfileX, c * gl * akx, force);
-    add_vector(kTrajectoryX, c * fk * blx, force);
-    add_vector(kTrajectoryY, c * fk * bly, force);
+    add_vector(kProfileX, c * (gl * ak_change + gl_mixed * ak_rest), force);
+    const double change_x = d.profile_x.dot(akx);
+    const double rest_x = rest_.profile_x.dot(akx);
+    add_vector(kTrajectoryX, c * (change_x * blx + rest_x * bl_change_x), force);
+    add_vector(kTrajectoryY, c * (change_x * bly + rest_x * bl_change_y), force);
     if (kOrderV[quantity] == 0) {
-      add_vector(kProfileZ, -k * length_v_ * (ak * s.profile_z), force);
+      add_vector(kProfileZ, -k * length_v_ * (ak * d.profile_z), force);
     }
   }
 }

@@ -20,6 +20,19 @@
 //      F_k B_l, xX = 2 sum k alpha^2 (A_k x)(B_l X)^T (the Gauss-Newton part has factor 1).
 // An assembly costs O((m + n)^2) instead of O(N_u N_v (p + q)^2) Gauss-point work, and gives the
 // same sums as the general quadrature up to round-off (the same Gauss points, regrouped).
+//
+// With a rest shape q_r = (x_r, z_r, X_r, Y_r) the energy is that of the change from it,
+// E = 1/2 integral sum_Q k_Q |S^Q(q) - S^Q(q_r)|^2 (dnurbs_swung_surface.h). Writing
+// f t - f_r t_r = (f - f_r) t + f_r (t - t_r) and dx = x - x_r, dT = T - T_r (T = (X, Y), B_l
+// acting on X and Y alike):
+//   E = 1/2 sum_Q k_Q (alpha^2 [dx^T A_k dx G_l + 2 (dx^T A_k x_r)(T^T B_l dT)
+//                               + (x_r^T A_k x_r)(dT^T B_l dT)] + [l == 0] L_v dz^T A_k dz),
+//   -f_int: x: k alpha^2 (G_l A_k dx + (T^T B_l dT) A_k x_r), z: [l == 0] k L_v A_k dz,
+//           T: k alpha^2 ((dx^T A_k x) B_l T + (x_r^T A_k x) B_l dT),
+// every term a product with dx, dz or dT, so that E and f_int vanish exactly at q = q_r (and
+// rounding is relative to the change, not to |q|^2). The Gauss-Newton part of d^2E/dq^2 does not
+// depend on q_r; the exact tangent's cross block is k alpha^2 (2 (A_k x)(B_l T)^T -
+// (A_k x_r)(B_l T_r)^T). Without a rest shape q_r = 0 and these are the forms above.
 
 #include <array>
 #include <vector>
@@ -44,6 +57,10 @@ class SwungSeparableForms {
                       const std::vector<PlanarCurveSample>& profile,
                       const std::vector<PlanarCurveSample>& trajectory, const double* material);
 
+  /// Measures E, f_int and the exact tangent from the rest shape at coordinates `q_rest` (file
+  /// comment); the constructor's rest is q_r = 0 (the energy measured from zero).
+  void set_rest(const Eigen::Ref<const Eigen::VectorXd>& q_rest);
+
   /// Sets the dense #coordinates square matrices M, D (if damping is non-zero; `damping` is
   /// left alone otherwise) and the stiffness (exact tangent, or only its Gauss-Newton part).
   void matrices(const Eigen::Ref<const Eigen::VectorXd>& q, bool geometric_stiffness,
@@ -63,6 +80,8 @@ class SwungSeparableForms {
     Eigen::VectorXd profile_x, profile_z, trajectory_x, trajectory_y;
   };
   Split split(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  // s - rest_, kind by kind.
+  Split change(const Split& s) const;
   // Adds a block of coordinates (rows of kind r, columns of kind c; kinds 0 x, 1 z, 2 X, 3 Y).
   void add_block(int row_kind, int column_kind, const Eigen::MatrixXd& block,
                  Eigen::MatrixXd& matrix) const;
@@ -74,6 +93,8 @@ class SwungSeparableForms {
                   Eigen::Ref<Eigen::VectorXd>& vector) const;
 
   SwungLayout layout_;
+  Split rest_;             // q_r by kind (zero without a rest shape)
+  bool has_rest_ = false;  // set_rest called: the exact tangent subtracts the rest cross block
   double alpha_ = 1.0;
   double length_v_ = 0.0;                           // integral dv
   std::array<Eigen::MatrixXd, 3> profile_gram_;     // A_k, m by m

@@ -1,6 +1,7 @@
 // The yield rule of a rest shape (dynamics/core/plastic_flow.h): elastic up to the yield
 // distance, beyond it the excess decays as (1 - rate dt)^n, exactly, on a single node; the rule
-// inside a System step, where a held control point's rest position follows the closed form.
+// inside a System step, where a held control point's rest position follows the closed form; planar
+// nodes (the curves of a swung surface) flow in their plane.
 
 #include "dnurbs/dynamics/core/plastic_flow.h"
 
@@ -56,6 +57,25 @@ TEST(PlasticFlow, AFastRateReturnsToTheYieldSurfaceAndWeightsDoNotFlow) {
   EXPECT_DOUBLE_EQ(rest[0], 2.5);
   EXPECT_EQ(rest[3], 1.0);
   EXPECT_EQ(rest.segment<4>(4), (Eigen::Vector4d() << 0, 0, 0, 1.0).finished());
+}
+
+TEST(PlasticFlow, PlanarNodesFlowInTheirPlaneAndKeepTheirWeight) {
+  // Control points of a swung surface's curves: two in-plane coordinates and a weight (stride 3,
+  // dimension 2); the distance is measured in the plane, the third entry never flows
+  const PlasticFlow flow{0.5, 2.0};
+  Eigen::VectorXd q(6);
+  q << 3.0, 4.0, 2.0, 0.3, 0.0, 9.0;  // node 0 at distance 5 from its rest, node 1 at 0.3
+  Eigen::VectorXd rest(6);
+  rest << 0.0, 0.0, 1.0, 0.0, 0.0, 1.0;
+  const double dt = 0.1;  // c = 0.2
+  EXPECT_EQ(flow_rest_positions(flow, dt, 3, q, rest, 2), 1);
+  // r = c (d - yield) s / |s| = 0.2 * 4.5 * (0.6, 0.8)
+  EXPECT_DOUBLE_EQ(rest[0], 0.54);
+  EXPECT_DOUBLE_EQ(rest[1], 0.72);
+  EXPECT_EQ(rest[2], 1.0);
+  EXPECT_EQ(rest.tail<3>(), Eigen::Vector3d(0.0, 0.0, 1.0));
+  EXPECT_THAT(error_message([&] { flow_rest_positions(flow, dt, 3, q, rest, 4); }),
+              HasSubstr("a node position of 4 coordinates (expected 2 or 3)"));
 }
 
 TEST(PlasticFlow, BadRulesAndStepsAreRefused) {

@@ -80,8 +80,10 @@ TEST(SwungElementAssembly, EqualsThePointByPointSumOfTheDefinitions) {
       Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(n, n);
       Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(n, n);
       Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(n, n);
-      SwungElementAssembly assembly(quadrature, layout, surface.alpha(), surface.profile().degree(),
-                                    surface.trajectory().degree(), true);
+      const SwungRestPoints no_rest;
+      SwungElementAssembly assembly(quadrature, no_rest, layout, surface.alpha(),
+                                    surface.profile().degree(), surface.trajectory().degree(),
+                                    true);
       assembly.assemble(profile, trajectory, mass, damping, stiffness);
       Eigen::MatrixXd expected_mass = Eigen::MatrixXd::Zero(n, n);
       Eigen::MatrixXd expected_damping = Eigen::MatrixXd::Zero(n, n);
