@@ -1,6 +1,7 @@
 #include "dnurbs/surface/adaptive_tessellation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -10,6 +11,12 @@
 
 namespace dnurbs {
 namespace {
+
+// True if the angle between unit vectors a and b is above the angle of cosine `cosine_limit`;
+// false if either is zero.
+bool angle_exceeds(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double cosine_limit) {
+  return !a.isZero() && !b.isZero() && a.dot(b) < cosine_limit;
+}
 
 void check_sample_order(int sample_order) {
   if (sample_order < 1) {
@@ -35,6 +42,41 @@ RefinementTest normal_angle_criterion(double max_angle) {
   return [limit](const RestrictedTriangleGeometry& triangle) {
     const auto& n = triangle.normals;
     return std::min({n[0].dot(n[1]), n[1].dot(n[2]), n[2].dot(n[0])}) < limit;
+  };
+}
+
+RefinementTest normals_criterion(double ridge_angle, double endpoint_angle) {
+  if (!(ridge_angle > 0.0) || !(ridge_angle <= std::numbers::pi)) {
+    throw make_error("normals criterion: ridge_angle ", ridge_angle, " is outside (0, pi]");
+  }
+  if (!(endpoint_angle > 0.0) || !(endpoint_angle <= std::numbers::pi)) {
+    throw make_error("normals criterion: endpoint_angle ", endpoint_angle, " is outside (0, pi]");
+  }
+  const double ridge_limit = std::cos(ridge_angle);
+  const double endpoint_limit = std::cos(endpoint_angle);
+  return [ridge_limit, endpoint_limit](const RestrictedTriangleGeometry& triangle) {
+    if (triangle.mesh == nullptr) {
+      throw make_error("normals criterion: triangle geometry without its mesh (level ",
+                       triangle.level, ")");
+    }
+    const RestrictedMesh& mesh = *triangle.mesh;
+    const Eigen::Vector3d facet = mesh.facet_normal(triangle.triangle);
+    const std::array<int, 3>& vertex = mesh.triangle_vertices(triangle.triangle);
+    for (int k = 0; k < 3; ++k) {
+      // Goldenstein et al. 2005, section 5.2.2: the edge opposite corner k is a ridge or valley
+      // when the facets on its two sides turn by more than the threshold, and jagged when the
+      // facet normals averaged around its end points do
+      const int across = mesh.neighbor(triangle.triangle, k);
+      if (across >= 0 && angle_exceeds(facet, mesh.facet_normal(across), ridge_limit)) {
+        return true;
+      }
+      if (angle_exceeds(mesh.averaged_facet_normal(vertex[static_cast<size_t>((k + 1) % 3)]),
+                        mesh.averaged_facet_normal(vertex[static_cast<size_t>((k + 2) % 3)]),
+                        endpoint_limit)) {
+        return true;
+      }
+    }
+    return false;
   };
 }
 

@@ -19,10 +19,21 @@ inline constexpr int kDefaultErrorSampleOrder = 8;
 /// bisections. Throws Error if depth < 0.
 RefinementTest depth_criterion(int depth);
 
-/// Normals-based refinement (Goldenstein et al. 2005, section 5.2.2): a triangle is split while the
-/// largest angle between two of its vertex normals (the surface's unit normals) exceeds `max_angle`
-/// (radians). Throws Error unless 0 < max_angle <= pi.
+/// A normals-based refinement on the surface's normals (a variant of Goldenstein et al. 2005,
+/// section 5.2.2, which looks at the mesh's facets: normals_criterion): a triangle is split while
+/// the largest angle between two of its vertex normals (the surface's unit normals) exceeds
+/// `max_angle` (radians). Throws Error unless 0 < max_angle <= pi.
 RefinementTest normal_angle_criterion(double max_angle);
+
+/// Normals-based refinement as Goldenstein et al. 2005, section 5.2.2 define it, on the current
+/// mesh's facets: a triangle is split while one of its edges is a ridge or valley (the facet
+/// normals of the two triangles sharing it, RestrictedMesh::facet_normal, are more than
+/// `ridge_angle` apart) or ends in a jagged angle (the facet normals averaged around its two end
+/// points, RestrictedMesh::averaged_facet_normal, are more than `endpoint_angle` apart). A zero
+/// normal (a facet collapsed at a pole) takes part in no comparison. Angles in radians; pi turns
+/// its half of the test off. The test needs the triangle's mesh: it throws Error for a geometry
+/// without one. Throws Error unless both angles are in (0, pi].
+RefinementTest normals_criterion(double ridge_angle, double endpoint_angle);
 
 /// The parametric error of a triangle or a mesh (Goldenstein et al. 2005, eqs. 5-7): at (u, v),
 /// eps(u, v) = |S(u, v) - P(u, v)| with P the linear interpolation of the vertex points in

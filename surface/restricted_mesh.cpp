@@ -10,9 +10,20 @@
 namespace dnurbs {
 namespace {
 
-// A base cell is 2^kCellShift lattice units wide, so kMaxLevel = 2 kCellShift bisections keep
-// every midpoint on the integer lattice.
-constexpr int kCellShift = RestrictedMesh::kMaxLevel / 2;
+// The splitmix64 finalizer: a bijective mix of 64 bits.
+std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// The key of the vertex that splits the edge of keys a and b (see triangle_keys).
+std::uint64_t split_vertex_key(std::uint64_t a, std::uint64_t b) {
+  constexpr std::uint64_t kSplitBit = std::uint64_t{1} << 63;
+  return mix(mix(std::min(a, b)) ^ std::max(a, b)) | kSplitBit;
+}
 
 }  // namespace
 
@@ -29,56 +40,84 @@ RestrictedMesh::RestrictedMesh(const ParametricSurface& surface, int base_cells_
     throw make_error("restricted mesh: base_cells_v ", base_cells_v, " is outside [", minimum_v,
                      ", ", kMaxBaseCells, "]");
   }
-  extent_u_ = static_cast<std::int64_t>(base_cells_u) << kCellShift;
-  extent_v_ = static_cast<std::int64_t>(base_cells_v) << kCellShift;
+  // Grid vertex (i, j), seams identified
+  std::unordered_map<std::uint64_t, int> vertex_by_key;
+  auto grid_vertex = [&](int i, int j) {
+    const int ci = domain.periodic_u && i == base_cells_u ? 0 : i;
+    const int cj = domain.periodic_v && j == base_cells_v ? 0 : j;
+    const std::uint64_t key =
+        static_cast<std::uint64_t>(ci) * static_cast<std::uint64_t>(base_cells_v + 1) +
+        static_cast<std::uint64_t>(cj);
+    const auto [found, inserted] = vertex_by_key.try_emplace(key, -1);
+    if (inserted) {
+      found->second = create_vertex(Eigen::Vector2d(ci, cj), key);
+    }
+    return found->second;
+  };
   // Goldenstein et al. 2005, section 4.2: the base triangulation is a union of basic blocks, one
   // per cell: (A, B, C) with apex B and (A, C, D) with apex D share their split edge, the diagonal
   // AC
-  const std::int64_t cell = std::int64_t{1} << kCellShift;
   for (int i = 0; i < base_cells_u; ++i) {
     for (int j = 0; j < base_cells_v; ++j) {
-      const Lattice a(i * cell, j * cell);
-      const Lattice b((i + 1) * cell, j * cell);
-      const Lattice c((i + 1) * cell, (j + 1) * cell);
-      const Lattice d(i * cell, (j + 1) * cell);
-      const int va = find_or_create_vertex(a);
-      const int vb = find_or_create_vertex(b);
-      const int vc = find_or_create_vertex(c);
-      const int vd = find_or_create_vertex(d);
+      const Eigen::Vector2d a(i, j);
+      const Eigen::Vector2d b(i + 1, j);
+      const Eigen::Vector2d c(i + 1, j + 1);
+      const Eigen::Vector2d d(i, j + 1);
+      const int va = grid_vertex(i, j);
+      const int vb = grid_vertex(i + 1, j);
+      const int vc = grid_vertex(i + 1, j + 1);
+      const int vd = grid_vertex(i, j + 1);
       add_triangle({vb, vc, va}, {b, c, a}, 0);
       add_triangle({vd, va, vc}, {d, a, c}, 0);
     }
   }
 }
 
-RestrictedMesh::Lattice RestrictedMesh::canonical(const Lattice& x) const {
-  Lattice c = x;
-  if (surface_.domain().periodic_u && c.x() >= extent_u_) {
-    c.x() -= extent_u_;
+RestrictedMesh::RestrictedMesh(const ParametricSurface& surface, const BlockTriangulation& base)
+    : surface_(surface) {
+  if (const int violations = compliance_violations(base); violations != 0) {
+    throw make_error("restricted mesh: the base triangulation has ", violations,
+                     " compliance violations (make it compliant with make_compliant)");
   }
-  if (surface_.domain().periodic_v && c.y() >= extent_v_) {
-    c.y() -= extent_v_;
-  }
-  return c;
-}
-
-std::uint64_t RestrictedMesh::lattice_key(const Lattice& c) const {
-  return static_cast<std::uint64_t>(c.x()) * static_cast<std::uint64_t>(extent_v_ + 1) +
-         static_cast<std::uint64_t>(c.y());
-}
-
-Eigen::Vector2d RestrictedMesh::unwrapped_parameter(const Lattice& x) const {
-  // Corners lie in [0, extent], so u_at maps the unwrapped seam corner to u_max
   const ParameterDomain& domain = surface_.domain();
-  return {domain.u_at(static_cast<double>(x.x()) / static_cast<double>(extent_u_)),
-          domain.v_at(static_cast<double>(x.y()) / static_cast<double>(extent_v_))};
+  for (int k = 0; k < base.uv.rows(); ++k) {
+    const Eigen::Vector2d uv = base.uv.row(k).transpose();
+    if (!(uv.x() >= domain.u_min && uv.x() <= domain.u_max && uv.y() >= domain.v_min &&
+          uv.y() <= domain.v_max)) {
+      throw make_error("restricted mesh: base vertex ", k, " (", uv.x(), ", ", uv.y(),
+                       ") is outside the surface's domain [", domain.u_min, ", ", domain.u_max,
+                       "] x [", domain.v_min, ", ", domain.v_max, "]");
+    }
+    create_vertex(uv, static_cast<std::uint64_t>(k));
+  }
+  for (int t = 0; t < base.triangles.rows(); ++t) {
+    const std::array<int, 3> v{base.triangles(t, 0), base.triangles(t, 1), base.triangles(t, 2)};
+    add_triangle(v,
+                 {base.uv.row(v[0]).transpose(), base.uv.row(v[1]).transpose(),
+                  base.uv.row(v[2]).transpose()},
+                 0);
+  }
 }
 
-int RestrictedMesh::find_or_create_vertex(const Lattice& unwrapped) {
-  const Lattice c = canonical(unwrapped);
-  const std::uint64_t key = lattice_key(c);
-  if (const auto found = vertex_by_key_.find(key); found != vertex_by_key_.end()) {
-    return found->second;
+Eigen::Vector2d RestrictedMesh::parameter_at(const Eigen::Vector2d& corner) const {
+  if (base_cells_u_ == 0) {
+    return corner;
+  }
+  // Corners lie in [0, cells], so u_at maps the unwrapped seam corner to u_max
+  const ParameterDomain& domain = surface_.domain();
+  return {domain.u_at(corner.x() / base_cells_u_), domain.v_at(corner.y() / base_cells_v_)};
+}
+
+int RestrictedMesh::create_vertex(const Eigen::Vector2d& corner, std::uint64_t key) {
+  Eigen::Vector2d canonical = corner;
+  if (base_cells_u_ > 0) {
+    // A seam corner of a periodic direction is the vertex at the domain's start
+    if (surface_.domain().periodic_u && canonical.x() >= base_cells_u_) {
+      canonical.x() -= base_cells_u_;
+    }
+    if (surface_.domain().periodic_v && canonical.y() >= base_cells_v_) {
+      canonical.y() -= base_cells_v_;
+    }
   }
   int id = 0;
   if (!free_vertices_.empty()) {
@@ -90,15 +129,13 @@ int RestrictedMesh::find_or_create_vertex(const Lattice& unwrapped) {
   }
   Vertex& vertex = vertices_[static_cast<size_t>(id)];
   vertex = Vertex{};
-  vertex.lattice = c;
   vertex.key = key;
   vertex.alive = true;
-  vertex.uv = unwrapped_parameter(c);
+  vertex.uv = parameter_at(canonical);
   // Goldenstein et al. 2005, section 5: the sampling function evaluates the surface at each new
   // vertex
   vertex.point = surface_.point(vertex.uv.x(), vertex.uv.y());
   vertex.normal = surface_.unit_normal(vertex.uv.x(), vertex.uv.y());
-  vertex_by_key_.emplace(key, id);
   ++vertex_count_;
   return id;
 }
@@ -110,7 +147,7 @@ std::uint64_t RestrictedMesh::edge_key(int a, int b) {
 }
 
 int RestrictedMesh::add_triangle(const std::array<int, 3>& vertex,
-                                 const std::array<Lattice, 3>& corner, int level) {
+                                 const std::array<Eigen::Vector2d, 3>& corner, int level) {
   int id = 0;
   if (!free_triangles_.empty()) {
     id = free_triangles_.back();
@@ -194,13 +231,14 @@ void RestrictedMesh::bisect(int triangle, int partner, std::vector<int>* created
     }
   }
   const Triangle& first = parent[0];
-  const Lattice midpoint = (first.corner[1] + first.corner[2]) / 2;
-  const int m = find_or_create_vertex(midpoint);
+  const std::uint64_t key_1 = vertices_[static_cast<size_t>(first.vertex[1])].key;
+  const std::uint64_t key_2 = vertices_[static_cast<size_t>(first.vertex[2])].key;
+  const int m =
+      create_vertex(0.5 * (first.corner[1] + first.corner[2]), split_vertex_key(key_1, key_2));
   {
     Vertex& vertex = vertices_[static_cast<size_t>(m)];
     vertex.from_split = true;
-    vertex.split_edge = {vertices_[static_cast<size_t>(first.vertex[1])].key,
-                         vertices_[static_cast<size_t>(first.vertex[2])].key};
+    vertex.split_edge = {key_1, key_2};
   }
   for (int p = 0; p < 2; ++p) {
     if (pair[static_cast<size_t>(p)] >= 0) {
@@ -212,7 +250,7 @@ void RestrictedMesh::bisect(int triangle, int partner, std::vector<int>* created
       continue;
     }
     const Triangle& t = parent[static_cast<size_t>(p)];
-    const Lattice mid = (t.corner[1] + t.corner[2]) / 2;  // m in this triangle's unwrapping
+    const Eigen::Vector2d mid = 0.5 * (t.corner[1] + t.corner[2]);  // m in this triangle's frame
     const int level = t.level + 1;
     const int c0 =
         add_triangle({m, t.vertex[0], t.vertex[1]}, {mid, t.corner[0], t.corner[1]}, level);
@@ -297,7 +335,7 @@ bool RestrictedMesh::weld_parents(int vertex, std::vector<Triangle>& parents) co
     }
   }
   // The children (m, a, b) and (m, c, a) of a parent (a, b, c) share the edge m-a, where a is
-  // not an end of the split edge; the parent's corner c is 2 m - b in the first child's frame
+  // not an end of the split edge; the parent's corner c is the second child's corner 1
   for (const int child : m.incident) {
     const Triangle& x = triangles_[static_cast<size_t>(child)];
     const std::uint64_t apex_key = vertices_[static_cast<size_t>(x.vertex[1])].key;
@@ -316,7 +354,7 @@ bool RestrictedMesh::weld_parents(int vertex, std::vector<Triangle>& parents) co
     }
     Triangle parent;
     parent.vertex = {x.vertex[1], x.vertex[2], partner->vertex[1]};
-    parent.corner = {x.corner[1], x.corner[2], Lattice(2 * x.corner[0] - x.corner[2])};
+    parent.corner = {x.corner[1], x.corner[2], partner->corner[1]};
     parent.level = level - 1;
     parent.alive = true;
     parents.push_back(parent);
@@ -329,7 +367,7 @@ bool RestrictedMesh::can_weld(int vertex) const {
   return weld_parents(vertex, parents);
 }
 
-bool RestrictedMesh::weld(int vertex) {
+bool RestrictedMesh::weld_restoring(int vertex, std::vector<int>* parent_ids) {
   std::vector<Triangle> parents;
   if (!weld_parents(vertex, parents)) {
     return false;
@@ -339,20 +377,24 @@ bool RestrictedMesh::weld(int vertex) {
   for (const int child : children) {
     remove_triangle(child);
   }
-  Vertex& m = vertices_[static_cast<size_t>(vertex)];
-  vertex_by_key_.erase(m.key);
-  m.alive = false;
+  vertices_[static_cast<size_t>(vertex)].alive = false;
   free_vertices_.push_back(vertex);
   --vertex_count_;
+  if (parent_ids != nullptr) {
+    parent_ids->clear();
+  }
   for (const Triangle& parent : parents) {
-    add_triangle(parent.vertex, parent.corner, parent.level);
+    const int id = add_triangle(parent.vertex, parent.corner, parent.level);
+    if (parent_ids != nullptr) {
+      parent_ids->push_back(id);
+    }
   }
   return true;
 }
 
 int RestrictedMesh::coarsen(const RefinementTest& needs_refinement) {
   int welds = 0;
-  std::vector<Triangle> parents;
+  std::vector<int> parents;
   std::vector<std::pair<int, int>> candidates;  // (-level of the children, vertex)
   while (true) {
     candidates.clear();
@@ -365,14 +407,15 @@ int RestrictedMesh::coarsen(const RefinementTest& needs_refinement) {
     std::sort(candidates.begin(), candidates.end());
     int pass = 0;
     for (const auto& [negative_level, v] : candidates) {
-      if (!weld_parents(v, parents)) {
+      // Weld, and split again if a restored parent needs refinement in the welded mesh (a test
+      // may look at the parent's neighbors); the split restores the same children and keys
+      if (!weld_restoring(v, &parents)) {
         continue;
       }
-      const bool keep = std::any_of(parents.begin(), parents.end(), [&](const Triangle& p) {
-        return needs_refinement(geometry_of(p.vertex, p.corner, p.level));
-      });
-      if (!keep) {
-        weld(v);
+      if (std::any_of(parents.begin(), parents.end(),
+                      [&](int p) { return needs_refinement(geometry(p)); })) {
+        bisect(parents[0], parents.size() > 1 ? parents[1] : -1, nullptr);
+      } else {
         ++pass;
       }
     }
@@ -404,24 +447,40 @@ int RestrictedMesh::level(int triangle) const {
   return triangles_[static_cast<size_t>(triangle)].level;
 }
 
-RestrictedTriangleGeometry RestrictedMesh::geometry_of(const std::array<int, 3>& vertex,
-                                                       const std::array<Lattice, 3>& corner,
-                                                       int level) const {
-  RestrictedTriangleGeometry g;
-  for (size_t k = 0; k < 3; ++k) {
-    const Vertex& v = vertices_[static_cast<size_t>(vertex[k])];
-    g.uv[k] = unwrapped_parameter(corner[k]);
-    g.points[k] = v.point;
-    g.normals[k] = v.normal;
-  }
-  g.level = level;
-  return g;
-}
-
 RestrictedTriangleGeometry RestrictedMesh::geometry(int triangle) const {
   check_triangle(triangle);
   const Triangle& t = triangles_[static_cast<size_t>(triangle)];
-  return geometry_of(t.vertex, t.corner, t.level);
+  RestrictedTriangleGeometry g;
+  for (size_t k = 0; k < 3; ++k) {
+    const Vertex& v = vertices_[static_cast<size_t>(t.vertex[k])];
+    g.uv[k] = parameter_at(t.corner[k]);
+    g.points[k] = v.point;
+    g.normals[k] = v.normal;
+  }
+  g.level = t.level;
+  g.mesh = this;
+  g.triangle = triangle;
+  return g;
+}
+
+Eigen::Vector3d RestrictedMesh::facet_normal(int triangle) const {
+  check_triangle(triangle);
+  const std::array<int, 3>& v = triangles_[static_cast<size_t>(triangle)].vertex;
+  const Eigen::Vector3d& x0 = vertices_[static_cast<size_t>(v[0])].point;
+  const Eigen::Vector3d n = (vertices_[static_cast<size_t>(v[1])].point - x0)
+                                .cross(vertices_[static_cast<size_t>(v[2])].point - x0);
+  const double length = n.norm();
+  return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+}
+
+Eigen::Vector3d RestrictedMesh::averaged_facet_normal(int vertex) const {
+  check_vertex(vertex);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const int t : vertices_[static_cast<size_t>(vertex)].incident) {
+    sum += facet_normal(t);
+  }
+  const double length = sum.norm();
+  return length > 0.0 ? Eigen::Vector3d(sum / length) : Eigen::Vector3d::Zero();
 }
 
 int RestrictedMesh::max_neighbor_level_difference() const {
@@ -445,15 +504,19 @@ int RestrictedMesh::max_level() const {
   return deepest;
 }
 
-Eigen::Vector2d RestrictedMesh::parameter(int vertex) const {
+void RestrictedMesh::check_vertex(int vertex) const {
   if (vertex < 0 || vertex >= static_cast<int>(vertices_.size()) ||
       !vertices_[static_cast<size_t>(vertex)].alive) {
     throw make_error("restricted mesh: vertex ", vertex, " is not a current vertex");
   }
+}
+
+Eigen::Vector2d RestrictedMesh::parameter(int vertex) const {
+  check_vertex(vertex);
   return vertices_[static_cast<size_t>(vertex)].uv;
 }
 
-std::vector<std::array<std::uint64_t, 3>> RestrictedMesh::lattice_triangles() const {
+std::vector<std::array<std::uint64_t, 3>> RestrictedMesh::triangle_keys() const {
   std::vector<std::array<std::uint64_t, 3>> keys;
   keys.reserve(static_cast<size_t>(triangle_count_));
   for (const int t : triangles()) {

@@ -269,6 +269,66 @@ TEST(AdaptiveTessellation, VertexCountsOfTheThreeCriteriaForOneBound) {
   EXPECT_LT(error_based.vertices, unconditional.vertices);
 }
 
+// The unit square folded along u = 1/2 (a grid line of every even grid base): z = tan(a) |u - 1/2|,
+// its two planes' normals 2a apart.
+ParametricSurface folded_sheet(double half_angle) {
+  return ParametricSurface(ParameterDomain{}, [half_angle](double u, double v) {
+    return Eigen::Vector3d(u, v, std::tan(half_angle) * std::abs(u - 0.5));
+  });
+}
+
+// Corners of a triangle on the fold line (exactly: bisection keeps u = 1/2 a binary fraction).
+int corners_on_fold(const RestrictedTriangleGeometry& triangle) {
+  return static_cast<int>(std::count_if(triangle.uv.begin(), triangle.uv.end(),
+                                        [](const Eigen::Vector2d& uv) { return uv.x() == 0.5; }));
+}
+
+TEST(AdaptiveTessellation, SeedNormalsCriterionRefinesAlongAFoldOnly) {
+  // Goldenstein et al. 2005, section 5.2.2 on a fold of 0.6 rad. Ridges alone (threshold 0.3,
+  // end points off): only an edge on the fold is a ridge, so the mesh is exactly the one refined
+  // by "has an edge on the fold"; every triangle with an edge on the fold reaches the depth limit
+  const double fold = 0.6;
+  const ParametricSurface surface = folded_sheet(fold / 2.0);
+  const int depth = 8;
+  RestrictedMesh ridges(surface, 4, 4);
+  ridges.refine(normals_criterion(0.3, std::numbers::pi), depth);
+  RestrictedMesh edge_on_fold(surface, 4, 4);
+  edge_on_fold.refine(
+      [](const RestrictedTriangleGeometry& triangle) { return corners_on_fold(triangle) == 2; },
+      depth);
+  EXPECT_EQ(ridges.triangle_keys(), edge_on_fold.triangle_keys());
+  EXPECT_LE(ridges.max_neighbor_level_difference(), 1);
+  int touching = 0;
+  for (const int t : ridges.triangles()) {
+    if (corners_on_fold(ridges.geometry(t)) == 2) {
+      ++touching;
+      EXPECT_EQ(ridges.level(t), depth);
+    }
+  }
+  // At the even depth 8 the triangles are right isosceles with legs 1/64 along the axes: the
+  // fold is cut into 64 legs, each with a triangle on both sides
+  EXPECT_EQ(touching, 2 * 64);
+  // The refining test keeps every split; one that never asks welds back to the base
+  EXPECT_EQ(ridges.coarsen(normals_criterion(0.3, std::numbers::pi)), 0);
+  EXPECT_EQ(ridges.triangle_keys(), edge_on_fold.triangle_keys());
+  ridges.coarsen(normals_criterion(std::numbers::pi, std::numbers::pi));
+  EXPECT_EQ(ridges.triangle_count(), 2 * 4 * 4);
+  // Jagged end points alone (threshold 0.03): around a vertex on the fold the facet normals
+  // average to a normal at least atan(sin 0.6 / (8 + cos 0.6)) = 0.064 rad from either plane's
+  // (at most 8 triangles on a side), around any other vertex to its plane's: exactly the mesh
+  // refined by "has a corner on the fold"
+  RestrictedMesh jagged(surface, 4, 4);
+  jagged.refine(normals_criterion(std::numbers::pi, 0.03), 6);
+  RestrictedMesh corner_on_fold(surface, 4, 4);
+  corner_on_fold.refine(
+      [](const RestrictedTriangleGeometry& triangle) { return corners_on_fold(triangle) > 0; }, 6);
+  EXPECT_EQ(jagged.triangle_keys(), corner_on_fold.triangle_keys());
+  std::cout << "[ normals  ] fold of " << fold << " rad on a 4 x 4 base: ridges to depth " << depth
+            << ": " << edge_on_fold.triangle_count() << " triangles, " << touching
+            << " with an edge on the fold; jagged end points to "
+            << "depth 6: " << jagged.triangle_count() << " triangles\n";
+}
+
 TEST(AdaptiveTessellation, OnTheSphereTheBestBaseBeatsUniformAndUnconditional) {
   // Constant curvature: the uniform (u, v) grid is already near the best mesh (its error is set
   // by the meridian spacing, the same everywhere). From the single base 2 x 4 the error
@@ -325,24 +385,24 @@ TEST(RestrictedMesh, BaseMeshIsTheUniformTessellation) {
 TEST(RestrictedMesh, WeldsUndoSplits) {
   const ParametricSurface surface = parametric_surface(sphere(1.0));
   RestrictedMesh mesh(surface, 2, 4);
-  const auto base = mesh.lattice_triangles();
+  const auto base = mesh.triangle_keys();
   // Refine by the error criterion, then weld everything: the base mesh again
   const RefinementTest error_test = surface_error_criterion(surface, 1e-3);
   EXPECT_GT(mesh.refine(error_test), 0);
-  const auto refined = mesh.lattice_triangles();
+  const auto refined = mesh.triangle_keys();
   // Coarsening by the test that refined it welds nothing
   EXPECT_EQ(mesh.coarsen(error_test), 0);
-  EXPECT_EQ(mesh.lattice_triangles(), refined);
+  EXPECT_EQ(mesh.triangle_keys(), refined);
   EXPECT_GT(mesh.coarsen([](const RestrictedTriangleGeometry&) { return false; }), 0);
-  EXPECT_EQ(mesh.lattice_triangles(), base);
+  EXPECT_EQ(mesh.triangle_keys(), base);
   EXPECT_EQ(mesh.parameter_vertex_count(), 3 * 4);  // the base lattice: 3 rows of 4 (v wraps)
   // Depth 3 everywhere, deeper by the error test, then back to depth 3 by welding
   mesh.refine(depth_criterion(3));
-  const auto depth3 = mesh.lattice_triangles();
+  const auto depth3 = mesh.triangle_keys();
   mesh.refine(surface_error_criterion(surface, 3e-4));
-  EXPECT_NE(mesh.lattice_triangles(), depth3);
+  EXPECT_NE(mesh.triangle_keys(), depth3);
   mesh.coarsen(depth_criterion(3));
-  EXPECT_EQ(mesh.lattice_triangles(), depth3);
+  EXPECT_EQ(mesh.triangle_keys(), depth3);
   EXPECT_LE(mesh.max_neighbor_level_difference(), 1);
 }
 
@@ -384,6 +444,9 @@ TEST(RestrictedMesh, InvalidInputNamesTheValue) {
   EXPECT_THROW(mesh.refine(depth_criterion(1), RestrictedMesh::kMaxLevel + 1), Error);
   EXPECT_THROW(depth_criterion(-1), Error);
   EXPECT_THROW(normal_angle_criterion(0.0), Error);
+  EXPECT_THROW(normals_criterion(0.0, 1.0), Error);
+  EXPECT_THROW(normals_criterion(1.0, 4.0), Error);
+  EXPECT_THROW(normals_criterion(1.0, 1.0)(RestrictedTriangleGeometry{}), Error);
   EXPECT_THROW(surface_error_criterion(torus, -1.0), Error);
   // Depth kMaxLevel is the lattice's limit: a triangle there cannot be split
   RestrictedMesh deep(bumpy_sheet(), 1, 1);
