@@ -85,7 +85,9 @@ struct FaceGeometryImage {
 FaceGeometryImage read_face_geometry_image(const std::string& path);
 
 /// A face: the cascade p(u, v; q) = V_geometry_image(u, v) + sum_k q_k V_k(u, v)
-/// (Goldenstein et al. 2005, eqs. 2 and 4) over the unit square.
+/// (Goldenstein et al. 2005, eqs. 2 and 4) over the unit square. The V_k are
+/// face_vector_field, in millimetres of the face's frame and not scaled per individual: every
+/// face moves by the same vectors at the same (u, v) (retargeting, section 6).
 class DeformableFace {
  public:
   /// The face of a geometry image (retargeting: any individual, the same fields).

@@ -197,18 +197,30 @@ TEST(DeformableFace, FieldsVanishOnTheBorderAndOutsideTheirInfluenceAreas) {
                                                  {0.66, 0.95}}}) {
     EXPECT_EQ(face_vector_field(FaceParameter::kFrontalisLeft, u, v), Eigen::Vector3d::Zero());
   }
-  // At a brow the frontalis is largest, 8 mm up the forehead, and falls monotonically above it
+  // At a brow the frontalis is largest, 8 mm up the forehead, and falls monotonically to zero
+  // along rays leaving the brow upward, downward, outward and inward (Goldenstein et al. 2005,
+  // section 3.4)
   const Eigen::Vector3d at_brow = face_vector_field(FaceParameter::kFrontalisLeft, 0.66, 0.7);
   EXPECT_NEAR(at_brow.norm(), 8.0, 1e-14);
   EXPECT_GT(at_brow.y(), 0.0);
-  double previous = at_brow.norm();
-  for (int j = 1; j <= 40; ++j) {
-    const double magnitude =
-        face_vector_field(FaceParameter::kFrontalisLeft, 0.66, 0.7 + 0.2 * j / 40.0).norm();
-    EXPECT_LT(magnitude, previous) << j;
-    previous = magnitude;
+  const double brow_outer_u = 0.5 + FaceLayout::kBrowOuter;
+  const double brow_inner_u = 0.5 + FaceLayout::kBrowInner;
+  for (const auto& [start, direction] : std::array<std::pair<Eigen::Vector2d, Eigen::Vector2d>, 4>{
+           {{{0.66, 0.7}, {0.0, 0.25}},
+            {{0.66, 0.7}, {0.0, -0.1}},
+            {{brow_outer_u, 0.7}, {0.1, 0.0}},
+            {{brow_inner_u, 0.7}, {-brow_inner_u + 0.5, 0.0}}}}) {
+    double previous = face_vector_field(FaceParameter::kFrontalisLeft, start.x(), start.y()).norm();
+    EXPECT_NEAR(previous, 8.0, 1e-14);
+    for (int step = 1; step <= 50; ++step) {
+      const Eigen::Vector2d at = start + direction * step / 50.0;
+      const double magnitude =
+          face_vector_field(FaceParameter::kFrontalisLeft, at.x(), at.y()).norm();
+      EXPECT_LE(magnitude, previous) << at.transpose();
+      previous = magnitude;
+    }
+    EXPECT_EQ(previous, 0.0) << start.transpose();
   }
-  EXPECT_EQ(previous, 0.0);
   // The jaw: the chin moves as one constant area, 12 mm down and back
   const Eigen::Vector3d chin = face_vector_field(FaceParameter::kJawOpen, 0.5, FaceLayout::kChinV);
   EXPECT_NEAR(chin.norm(), 12.0, 1e-13);
@@ -348,6 +360,11 @@ TEST(DeformableFace, RefusesBadFilesNamingTheFileAndTheValue) {
   const DeformableFace face = DeformableFace::read(path);
   EXPECT_EQ(face.point(Eigen::VectorXd::Zero(7), 1.0, 1.0), Eigen::Vector3d(1.0, 1.0, 0.0));
   EXPECT_THROW(DeformableFace::read((folder / "missing.gim").string()), Error);
+  // A geometry image over another domain is refused
+  ParameterDomain other;
+  other.u_max = 2.0;
+  EXPECT_THROW(DeformableFace({"y", SampledVectorField(other, 2, 2, Eigen::MatrixX3d::Zero(4, 3))}),
+               Error);
 }
 
 }  // namespace
