@@ -42,7 +42,8 @@ std::optional<PlasticFlow> read_plastic_flow(const SceneReader& reader, const Js
 /// The "plastic" object as written back.
 JsonOut plastic_flow_json(const PlasticFlow& flow);
 
-/// The rest shape keys of the rational control-net models (rational_control_net_model.h):
+/// The rest shape keys of the rational control-net models (rational_control_net_model.h) and of
+/// the swung D-NURBS surfaces (dnurbs_swung_surface.h):
 /// "rest_shape" ("none" or "initial": initial_shape_at_rest) and "plastic" (read_plastic_flow),
 /// which a "rest_shape": "none" refuses. Absent keys leave the values as they are.
 void read_rest_shape_keys(const SceneReader& reader, const JsonValue& model,

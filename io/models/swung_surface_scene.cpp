@@ -148,6 +148,7 @@ void read_settings(const SceneReader& reader, const JsonValue& model, const std:
   reader.boolean_key(model, path, "geometric_stiffness", settings.geometric_stiffness);
   reader.boolean_key(model, path, "separable_assembly", settings.separable_assembly);
   reader.number_key(model, path, "weight_inertia", settings.weight_inertia, 0.0, false);
+  read_rest_shape_keys(reader, model, path, settings.initial_shape_at_rest, settings.plastic_flow);
 }
 
 void write_settings(const DNurbsSwungSettings& settings, JsonOut& model) {
@@ -159,6 +160,7 @@ void write_settings(const DNurbsSwungSettings& settings, JsonOut& model) {
   model["geometric_stiffness"] = settings.geometric_stiffness;
   model["separable_assembly"] = settings.separable_assembly;
   model["weight_inertia"] = settings.weight_inertia;
+  write_rest_shape_keys(settings.initial_shape_at_rest, settings.plastic_flow, model);
 }
 
 }  // namespace
@@ -240,6 +242,7 @@ SceneSwungSurface::naive_variant() const {
   common.weight_mode = settings.weight_mode;
   common.minimum_weight = settings.minimum_weight;
   write_dnurbs_settings(common, json);
+  write_rest_shape_keys(settings.initial_shape_at_rest, settings.plastic_flow, json);
   const SceneReader reader("<tensor-product twin of a swung_surface>", ".");
   std::unique_ptr<SceneModelSpec> naive = find_type(scene_model_types(), "dnurbs_surface")
                                               .read(reader, JsonValue::parse(json.dump()), "twin");
@@ -253,10 +256,11 @@ SceneSwungSurface::naive_variant() const {
 std::unique_ptr<SceneModelSpec> read_swung_surface_scene(const SceneReader& reader,
                                                          const JsonValue& model,
                                                          const std::string& path) {
-  check_model_keys(reader, model, path, "swung_surface",
-                   {"prototype", "profile", "trajectory", "alpha", "refine", "fix_profile",
-                    "fix_trajectory", "fix_poles", "weights", "quadrature_points", "minimum_weight",
-                    "geometric_stiffness", "separable_assembly", "weight_inertia"});
+  check_model_keys(
+      reader, model, path, "swung_surface",
+      {"prototype", "profile", "trajectory", "alpha", "refine", "fix_profile", "fix_trajectory",
+       "fix_poles", "weights", "quadrature_points", "minimum_weight", "geometric_stiffness",
+       "separable_assembly", "weight_inertia", "rest_shape", "plastic"});
   auto spec = std::make_unique<SceneSwungSurface>();
   // Material (the keys of "dnurbs_surface") ---------------------------------------------------
   read_dnurbs_surface_material(reader, model, path, spec->material);

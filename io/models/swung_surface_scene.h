@@ -3,7 +3,8 @@
 // (dynamics/swung/dnurbs_swung_surface.h; Qin & Terzopoulos, Dynamic NURBS swung surfaces for
 // physics-based shape design, CAD 27(2) 1995) from its profile and trajectory curves (inline or
 // shape files) or from a named prototype (nurbs/swung_shapes.h), optionally refined, with its
-// material, settings and curve fixes.
+// material, settings (among them the rest shape keys "rest_shape" and "plastic" of the other
+// D-NURBS types, io/scene_model_keys.h) and curve fixes.
 
 #include <memory>
 #include <optional>

@@ -195,8 +195,9 @@ TEST(ResumedRun, APlasticRestShapeIsKeptByTheCheckpoint) {
               HasSubstr("a plastic rest shape needs \"rest_shape\": \"initial\""));
 }
 
-// Plastic rest shapes of the other model types: a pushed PDE surface, Terzopoulos sheet and
-// triangular D-NURBS patch.
+// Plastic rest shapes of the other model types: a pushed PDE surface, Terzopoulos sheet,
+// triangular D-NURBS patch and swung D-NURBS sphere (its rest shape in profile and trajectory
+// coordinates, stepped with a Newton iteration: M, D, K re-assembled at every iterate).
 const char* const kPlasticScenes[] = {
     R"({"models": [{"name": "clay", "type": "pde_surface",
       "grid": {"nodes": [9, 9], "spacing": 0.125}, "material": {"damping": 5},
@@ -216,7 +217,13 @@ const char* const kPlasticScenes[] = {
       "material": {"damping_density": 3, "a10": 1, "a01": 1, "b20": 0.05, "b11": 0.05, "b02": 0.05},
       "boundary": {"clamp_border": true}}],
     "forces": [{"type": "point", "model": "clay", "at": [0.5, 0.5], "force": [0, 0, -1]}],
-    "integrator": {"dt": 0.1, "scheme": "implicit-euler"}, "run": {"steps": 30}})"};
+    "integrator": {"dt": 0.1, "scheme": "implicit-euler"}, "run": {"steps": 30}})",
+    R"({"models": [{"name": "clay", "type": "swung_surface", "prototype": {"kind": "sphere"},
+      "plastic": {"yield": 0.01, "rate": 3},
+      "material": {"damping_density": 3, "a10": 1, "a01": 1, "b20": 0.1, "b11": 0.1, "b02": 0.1}}],
+    "forces": [{"type": "point", "model": "clay", "at": [0.5, 0], "force": [-8, 0, 0]}],
+    "integrator": {"dt": 0.1, "scheme": "implicit-euler", "newton_iterations": 1},
+    "run": {"steps": 30}})"};
 
 TEST(ResumedRun, EveryPlasticModelTypeKeepsItsRestShapeInTheCheckpoint) {
   for (const char* text : kPlasticScenes) {

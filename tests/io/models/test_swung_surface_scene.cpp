@@ -1,8 +1,9 @@
 // Tests of io/models/swung_surface_scene.h, the scene type "swung_surface": prototypes and curves
 // (inline and shape files) parse into the surfaces they name, every key round-trips through the
 // writer and is documented in docs/scene-format.md, malformed keys fail naming their JSON path,
-// the cost report sets the model against its tensor-product twin, boundary keys and constraints
-// reach the model, and the four example scenes of Fig. 6 keep the properties they are built on.
+// the cost report sets the model against its tensor-product twin, boundary keys, constraints and
+// the rest shape keys reach the model, and the four example scenes of Fig. 6 keep the
+// properties they are built on.
 
 #include "dnurbs/io/models/swung_surface_scene.h"
 
@@ -346,6 +347,42 @@ TEST(SwungSurfaceScene, ConstraintsAndBoundaryKeysReachTheModel) {
     EXPECT_GT(initial[c], 0.015) << c;
     EXPECT_LT(violations[c], 0.1 * initial[c]) << c;  // measured 0.091 of the start
   }
+}
+
+TEST(SwungSurfaceScene, RestShapeAndPlasticKeysReachTheModelAndRoundTrip) {
+  // "rest_shape": "initial" puts the sphere at rest (zero force); "plastic" makes it yield; both
+  // are written back and read again; a plastic rest shape with "rest_shape": "none" is refused.
+  const std::string sphere =
+      R"({"type": "swung_surface", "prototype": {"kind": "sphere"}, "material": {"a10": 1}, )";
+  for (const std::string keys :
+       {R"("rest_shape": "initial"})", R"("plastic": {"yield": 0.01, "rate": 2}})"}) {
+    const Scene scene = parse_scene_json(scene_with(sphere + keys));
+    const DNurbsSwungSettings& settings = swung_spec(scene).settings;
+    const bool plastic = keys.find("plastic") != std::string::npos;
+    EXPECT_EQ(settings.initial_shape_at_rest, !plastic);
+    EXPECT_EQ(settings.plastic_flow.has_value(), plastic);
+    const Scene again = parse_scene_json(scene_to_json(scene));
+    EXPECT_EQ(swung_spec(again).settings.initial_shape_at_rest, !plastic);
+    ASSERT_EQ(swung_spec(again).settings.plastic_flow.has_value(), plastic);
+    if (plastic) {
+      EXPECT_EQ(swung_spec(again).settings.plastic_flow->yield, 0.01);
+      EXPECT_EQ(swung_spec(again).settings.plastic_flow->rate, 2.0);
+    }
+    SceneSimulation simulation(scene);
+    const Model& model = simulation.system().model(0);
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(model.velocity_count());
+    model.add_internal_force(model.initial_coordinates(), force);
+    EXPECT_EQ(force.lpNorm<Eigen::Infinity>(), 0.0) << keys;
+    EXPECT_EQ(simulation.system().flowing_rest_coordinates().size(),
+              plastic ? model.coordinate_count() : 0);
+  }
+  EXPECT_THAT(parse_error(scene_with(sphere + R"("plastic": {"yield": -1, "rate": 2}})")),
+              HasSubstr("models[0].plastic.yield"));
+  EXPECT_THAT(parse_error(scene_with(sphere + R"("rest_shape": "none",
+                                                 "plastic": {"yield": 0, "rate": 2}})")),
+              HasSubstr("a plastic rest shape needs \"rest_shape\": \"initial\""));
+  EXPECT_THAT(parse_error(scene_with(sphere + R"("rest_shape": "bent"})")),
+              HasSubstr("models[0].rest_shape: expected one of none, initial"));
 }
 
 }  // namespace
