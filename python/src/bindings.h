@@ -58,6 +58,8 @@ void bind_swung(py::module_& module);
 /// dnurbs.Triangulation, TriangularBSplineBasis, TriangularNurbsSurface and
 /// TriangularDNurbsSurface.
 void bind_triangular(py::module_& module);
+/// dnurbs.DeformationFieldModel (dynamics/fields/deformation_field_model.h).
+void bind_deformation_field(py::module_& module);
 /// Shape files (parse, read, write, to_json; triangular ones too) and checkpoint files.
 void bind_shape_files(py::module_& module);
 /// dnurbs.ConstraintSolver with point, surface normal, curve-on-surface and hinge constraints.

@@ -24,6 +24,7 @@ PYBIND11_MODULE(_dnurbs, module) {
   bind_generalized_spline(module);
   bind_swung(module);
   bind_triangular(module);
+  bind_deformation_field(module);
   bind_system(module);
   bind_integrator(module);
   bind_design(module);
