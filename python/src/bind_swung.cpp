@@ -10,6 +10,7 @@
 #include "dnurbs/nurbs/swung_shapes.h"
 #include "python/src/bindings.h"
 #include "python/src/model_arguments.h"
+#include "python/src/rest_shape_binding.h"
 #include "python/src/surface_arrays.h"
 
 namespace dnurbs::python {
@@ -90,7 +91,7 @@ DNurbsSwungSurface make_swung_model(const SwungSurface& surface, double mass_den
                                     double b11, double b02, bool free_weights,
                                     int quadrature_points, double minimum_weight, bool fix_gauge,
                                     bool geometric_stiffness, double weight_inertia,
-                                    bool separable_assembly) {
+                                    bool separable_assembly, bool initial_shape_at_rest) {
   DNurbsSwungSettings settings;
   settings.weight_mode = free_weights ? WeightMode::kFree : WeightMode::kFixed;
   settings.quadrature_points = quadrature_points;
@@ -99,29 +100,32 @@ DNurbsSwungSurface make_swung_model(const SwungSurface& surface, double mass_den
   settings.geometric_stiffness = geometric_stiffness;
   settings.weight_inertia = weight_inertia;
   settings.separable_assembly = separable_assembly;
+  settings.initial_shape_at_rest = initial_shape_at_rest;
   return DNurbsSwungSurface(surface, {mass_density, damping_density, a10, a01, b20, b11, b02},
                             settings);
 }
 
 void bind_swung_model(py::module_& module) {
   using S = DNurbsSwungSurface;
-  py::class_<S, Model>(
+  py::class_<S, Model> model_class(
       module, "DNurbsSwungSurface",
       "A swung D-NURBS surface: q = [x_0, z_0, (w_0), ... | X_0, Y_0, (W_0), ...], the "
       "profile's control points then the trajectory's (Qin & Terzopoulos, CAD 27(2) 1995), with "
-      "the D-NURBS energy of the tensor-product model.")
+      "the D-NURBS energy of the tensor-product model.");
+  model_class
       .def(py::init(&make_swung_model), py::arg("surface"), py::arg("mass_density") = 1.0,
            py::arg("damping_density") = 0.0, py::arg("a10") = 0.0, py::arg("a01") = 0.0,
            py::arg("b20") = 0.0, py::arg("b11") = 0.0, py::arg("b02") = 0.0,
            py::arg("free_weights") = false, py::arg("quadrature_points") = 0,
            py::arg("minimum_weight") = 1e-3, py::arg("fix_gauge") = true,
            py::arg("geometric_stiffness") = false, py::arg("weight_inertia") = 0.0,
-           py::arg("separable_assembly") = true,
+           py::arg("separable_assembly") = true, py::arg("initial_shape_at_rest") = false,
            "surface: a SwungSurface; densities and stiffnesses as DNurbsSurface (>= 0); "
            "free_weights: weights are coordinates; quadrature_points per span (0: exact for "
            "polynomial curves); fix_gauge fixes the scaling gauge; geometric_stiffness: exact "
            "tangent stiffness instead of Gauss-Newton; separable_assembly: closed-form forms "
-           "where possible.")
+           "where possible; initial_shape_at_rest: the energy of the change from the surface as "
+           "given (set_rest_shape).")
       .def_property_readonly(
           "free_weights", [](const S& self) { return self.weight_mode() == WeightMode::kFree; },
           "True if the weights are coordinates.")
@@ -195,6 +199,7 @@ void bind_swung_model(py::module_& module) {
                              "Area of the parametric domain.")
       .def_property_readonly("uses_separable_assembly", &S::uses_separable_assembly,
                              "True if the closed-form separable path is used.");
+  bind_rest_shape(model_class);
 }
 
 }  // namespace

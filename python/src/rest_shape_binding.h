@@ -11,7 +11,7 @@ namespace dnurbs::python {
 
 /// set_rest_shape, has_rest_shape, rest_coordinates and set_plastic_flow of a rational
 /// control-net model (rational_control_net_model.h) on its class: DNurbsCurve, DNurbsSurface,
-/// TriangularDNurbsSurface.
+/// TriangularDNurbsSurface; and of DNurbsSwungSurface, whose control points are its curves'.
 template <typename DNurbsClass>
 void bind_rest_shape(py::class_<DNurbsClass, Model>& model_class) {
   model_class

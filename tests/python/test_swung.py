@@ -1,6 +1,7 @@
 """Swung surfaces from Python: the prototypes' exact geometry on arrays of parameters (a sphere of
 radius r, a torus tube, a cylinder, a cone), derivatives against finite differences, the exact
-tensor-product twin, refinement, and the swung D-NURBS model's coordinates, fixes and Jacobian."""
+tensor-product twin, refinement, and the swung D-NURBS model's coordinates, fixes, Jacobian, rest
+shape and plastic flow."""
 
 import numpy as np
 import pytest
@@ -145,3 +146,41 @@ def test_swung_jacobians_of_derivatives_and_their_rates():
     np.testing.assert_allclose(rates[0], second, atol=1e-9)
     with pytest.raises(ValueError, match="order 3"):
         model.jacobian(q, at, 3)
+
+
+def test_swung_rest_shape_and_plastic_flow_keep_a_dent():
+    material = dict(damping_density=3.0, a10=1.0, a01=1.0, b20=0.1, b11=0.1, b02=0.1)
+    sphere = dnurbs.swung_sphere(1.0)
+    # Measured from its initial shape the sphere is at rest: force and energy exactly 0
+    model = dnurbs.DNurbsSwungSurface(sphere, initial_shape_at_rest=True, **material)
+    assert model.has_rest_shape
+    q = model.initial_coordinates()
+    np.testing.assert_array_equal(model.rest_coordinates, q)
+    assert np.abs(model.internal_force(q)).max() == 0.0 and model.potential_energy(q) == 0.0
+    assert np.abs(dnurbs.DNurbsSwungSurface(sphere, **material).internal_force(q)).max() > 0.1
+    # A rest shape of another profile: the energy of the change, zero at that rest
+    moved = q.copy()
+    moved[model.profile_offset(2)] += 0.1  # the equator's x
+    model.set_rest_shape(moved)
+    assert model.potential_energy(moved) == 0.0 and model.potential_energy(q) > 0.0
+    # The equator pushed in for 1 s and released: the plastic sphere keeps a dent (in by 0.353,
+    # 0.283 left), the elastic one springs back (in by 0.084, 1.2e-14 left; the damping's decay)
+    def pushed_and_released(yield_distance):
+        clay = dnurbs.DNurbsSwungSurface(sphere, initial_shape_at_rest=True, **material)
+        clay.fix_poles()
+        clay.fix_trajectory()
+        if yield_distance is not None:
+            clay.set_plastic_flow(yield_distance, rate=4.0)
+        system = dnurbs.System()
+        system.add_model(clay)
+        system.add_point_force(0, [0.5, 0.0], [-8.0, 0.0, 0.0])
+        integrator = dnurbs.Integrator("implicit-euler", newton_iterations=1)
+        integrator.step(system, 0.02, count=50)
+        system.clear_forces()
+        integrator.step(system, 0.02, count=350)
+        return 1.0 - system.position(0, [0.5, 0.0])[0]
+    assert abs(pushed_and_released(None)) < 1e-6
+    assert pushed_and_released(0.01) > 0.1
+    with pytest.raises(dnurbs.Error, match="plastic yield -1"):
+        model.set_plastic_flow(-1.0)
+    model.set_plastic_flow(None)
