@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 #include "dnurbs/core/error.h"
@@ -134,8 +135,6 @@ void DeformationFieldModel::assemble_matrices(ConstVectorRef /*q*/, ModelMatrice
 
 void DeformationFieldModel::add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                                                   VectorRef force) const {
-  const double step_u = ParametricSurface::kDifferenceStep * (domain_.u_max - domain_.u_min);
-  const double step_v = ParametricSurface::kDifferenceStep * (domain_.v_max - domain_.v_min);
   MaterialSample sample;
   sample.mass_density = settings_.mass_density;
   for (const QuadraturePoint& point : points_) {
@@ -143,15 +142,39 @@ void DeformationFieldModel::add_distributed_force(ConstVectorRef q, const ForceD
     const double v = point.parameter.y();
     sample.parameter = point.parameter;
     sample.position = position(q, point.parameter);
-    // Central differences, one-sided where a step would leave the domain
-    const double u0 = std::max(u - step_u, domain_.u_min);
-    const double u1 = std::min(u + step_u, domain_.u_max);
-    const double v0 = std::max(v - step_v, domain_.v_min);
-    const double v1 = std::min(v + step_v, domain_.v_max);
-    sample.tangent_u = (position(q, {u1, v}) - position(q, {u0, v})) / (u1 - u0);
-    sample.tangent_v = (position(q, {u, v1}) - position(q, {u, v0})) / (v1 - v0);
+    const Eigen::Vector4d d = difference_parameters(point.parameter);
+    sample.tangent_u = (position(q, {d(1), v}) - position(q, {d(0), v})) / (d(1) - d(0));
+    sample.tangent_v = (position(q, {u, d(3)}) - position(q, {u, d(2)})) / (d(3) - d(2));
     force.noalias() += point.weight * (point.jacobian.transpose() * density(sample));
   }
+}
+
+Eigen::Vector4d DeformationFieldModel::difference_parameters(const Eigen::Vector2d& u) const {
+  // Central differences, one-sided where a step would leave the domain
+  const double step_u = ParametricSurface::kDifferenceStep * (domain_.u_max - domain_.u_min);
+  const double step_v = ParametricSurface::kDifferenceStep * (domain_.v_max - domain_.v_min);
+  return {std::max(u.x() - step_u, domain_.u_min), std::min(u.x() + step_u, domain_.u_max),
+          std::max(u.y() - step_v, domain_.v_min), std::min(u.y() + step_v, domain_.v_max)};
+}
+
+void DeformationFieldModel::tangent_kinematics(ConstVectorRef q, ConstVectorRef qd,
+                                               const Eigen::Vector2d& u,
+                                               TangentKinematics& tangents) const {
+  const Eigen::Vector4d d = difference_parameters(u);
+  const double v = u.y();
+  tangents.su = (position(q, {d(1), v}) - position(q, {d(0), v})) / (d(1) - d(0));
+  tangents.sv = (position(q, {u.x(), d(3)}) - position(q, {u.x(), d(2)})) / (d(3) - d(2));
+  tangents.ju =
+      (field_.parameter_jacobian(d(1), v) - field_.parameter_jacobian(d(0), v)) / (d(1) - d(0));
+  tangents.jv = (field_.parameter_jacobian(u.x(), d(3)) - field_.parameter_jacobian(u.x(), d(2))) /
+                (d(3) - d(2));
+  tangents.columns.resize(static_cast<size_t>(coordinate_count()));
+  std::iota(tangents.columns.begin(), tangents.columns.end(), 0);
+  tangents.su_rate = tangents.ju * qd;
+  tangents.sv_rate = tangents.jv * qd;
+  // J_u and J_v do not depend on q (Goldenstein et al. 2005, eq. 4 is affine in q)
+  tangents.su_bias.setZero();
+  tangents.sv_bias.setZero();
 }
 
 ParameterDomain DeformationFieldModel::parameter_domain(ConstVectorRef /*q*/) const {

@@ -89,6 +89,12 @@ class DeformationFieldModel : public Model {
   void add_distributed_force(ConstVectorRef q, const ForceDensity& density,
                              VectorRef force) const override;
 
+  /// S_u, S_v and J_u = dL/du, J_v = dL/dv (3 by P, every column listed) by central
+  /// differences of x and L (one-sided at the domain's edges, ParametricSurface::kDifferenceStep
+  /// of its extent); the bias terms are zero (L does not depend on q).
+  void tangent_kinematics(ConstVectorRef q, ConstVectorRef qd, const Eigen::Vector2d& u,
+                          TangentKinematics& tangents) const override;
+
   ParameterDomain parameter_domain(ConstVectorRef q) const override;
   NormalOrientation normal_orientation() const override;
   /// deformed_surface(base, field, q), or deformation_field_surface(domain, field, q).
@@ -105,6 +111,8 @@ class DeformationFieldModel : public Model {
     Eigen::Matrix3Xd jacobian;  ///< L at the point, 3 by P
   };
   Eigen::Vector3d input(double u, double v) const;
+  // (u0, u1, v0, v1): the parameters of the difference tangents at u
+  Eigen::Vector4d difference_parameters(const Eigen::Vector2d& u) const;
 
   DeformationField field_;
   std::optional<ParametricSurface> base_;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,36 @@ TEST(DeformationFieldModel, PointJacobianMatchesCentralDifferences) {
       (model.position(q, u) - (plane(0.25, 0.5) + 0.7 * bump(0.25, 0.5) - 0.4 * swirl(0.25, 0.5)))
           .norm(),
       1e-15);
+}
+
+TEST(DeformationFieldModel, TangentKinematicsMatchTheAnalyticDerivatives) {
+  const DeformationFieldModel model = two_mode_model();
+  const Eigen::Vector2d q(0.7, -0.4);
+  const Eigen::Vector2d qd(2.0, 3.0);
+  const double u = 0.45;
+  const double v = 0.55;
+  // d bump / du and d bump / dv, d swirl / du = (0, v, -2 sin 2u), d swirl / dv = (3 cos 3v, u, 0)
+  const Eigen::Vector3d bump_u = bump(u, v) * (-2.0 * (u - 0.4) / 0.05);
+  const Eigen::Vector3d bump_v = bump(u, v) * (-2.0 * (v - 0.6) / 0.05);
+  const Eigen::Vector3d swirl_u(0.0, v, -2.0 * std::sin(2.0 * u));
+  const Eigen::Vector3d swirl_v(3.0 * std::cos(3.0 * v), u, 0.0);
+  TangentKinematics tangents;
+  model.tangent_kinematics(q, qd, {u, v}, tangents);
+  // Central differences of step 1e-5: truncation h^2 |f_uuu| / 6 < 1e-8 for the bump's third
+  // derivatives (of order (2 / 0.05)^1.5 ~ 250), rounding 1e-16 / 1e-5
+  const double tolerance = 1e-7;
+  EXPECT_LT((tangents.su - (Eigen::Vector3d::UnitX() + 0.7 * bump_u - 0.4 * swirl_u)).norm(),
+            tolerance);
+  EXPECT_LT((tangents.sv - (Eigen::Vector3d::UnitY() + 0.7 * bump_v - 0.4 * swirl_v)).norm(),
+            tolerance);
+  EXPECT_EQ(tangents.columns, (std::vector<int>{0, 1}));
+  EXPECT_LT((tangents.ju.col(0) - bump_u).norm(), tolerance);
+  EXPECT_LT((tangents.ju.col(1) - swirl_u).norm(), tolerance);
+  EXPECT_LT((tangents.jv.col(0) - bump_v).norm(), tolerance);
+  EXPECT_LT((tangents.jv.col(1) - swirl_v).norm(), tolerance);
+  // J_u qd with |qd| ~ 3.6: the same error times |qd|
+  EXPECT_LT((tangents.su_rate - (2.0 * bump_u + 3.0 * swirl_u)).norm(), 5 * tolerance);
+  EXPECT_EQ(tangents.su_bias, Eigen::Vector3d::Zero());
 }
 
 TEST(DeformationFieldModel, MassAndDampingAreTheClosedFormIntegrals) {
