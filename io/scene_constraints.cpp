@@ -1,7 +1,9 @@
 #include "dnurbs/io/scene_constraints.h"
 
+#include <string>
 #include <utility>
 
+#include "dnurbs/constraints/curve_on_surface_constraint.h"
 #include "dnurbs/constraints/point_constraints.h"
 #include "dnurbs/constraints/surface_constraints.h"
 #include "dnurbs/io/json_messages.h"
@@ -104,10 +106,16 @@ void read_keys(const SceneReader& reader, const ModelNames& names, const JsonVal
 void read_keys(const SceneReader& reader, const ModelNames& names, const JsonValue& constraint,
                const std::string& path, CurveOnSurfaceKeys& keys) {
   reader.object(constraint, path,
-                {"type", "curve_model", "surface_model", "samples", "alpha", "beta"});
+                {"type", "curve_model", "surface_model", "samples", "follow", "alpha", "beta"});
   keys.curve_model = names.require(reader, constraint, path, "curve_model");
   keys.surface_model = names.require(reader, constraint, path, "surface_model");
   reader.integer_key(constraint, path, "samples", keys.samples, 1, 10000);
+  reader.boolean_key(constraint, path, "follow", keys.follow);
+  if (keys.follow && keys.samples < 2) {
+    reader.fail(join_json_path(path, "samples"),
+                "a curve following the surface needs at least 2 samples, got " +
+                    std::to_string(keys.samples));
+  }
 }
 
 // Writers ----------------------------------------------------------------------------------------
@@ -148,6 +156,9 @@ void write_keys(const CurveOnSurfaceKeys& keys, JsonOut& json) {
   json["curve_model"] = keys.curve_model;
   json["surface_model"] = keys.surface_model;
   json["samples"] = keys.samples;
+  if (keys.follow) {
+    json["follow"] = true;
+  }
 }
 
 // Library constraints ----------------------------------------------------------------------------
@@ -185,6 +196,13 @@ void add_constraints(const SurfaceNormalKeys& keys, ConstraintSolver& solver, Sy
 
 void add_constraints(const CurveOnSurfaceKeys& keys, ConstraintSolver& solver, System& system,
                      const BaumgarteParameters& parameters) {
+  if (keys.follow) {
+    solver.add(
+        system,
+        evenly_sampled_curve_on_surface(system, keys.curve_model, keys.surface_model, keys.samples),
+        parameters);
+    return;
+  }
   for (auto& constraint :
        curve_on_surface_constraints(system, keys.curve_model, keys.surface_model, keys.samples)) {
     solver.add(system, std::move(constraint), parameters);

@@ -78,12 +78,15 @@ struct SurfaceNormalKeys {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
 };
 
-/// "curve_on_surface": a curve glued onto a surface at samples.
+/// "curve_on_surface": a curve held on a surface at samples, glued to surface points frozen at
+/// creation (follow = false: curve_on_surface_constraints) or following their nearest surface
+/// points (follow = true: CurveOnSurfaceConstraint, the curve may slide over the surface).
 struct CurveOnSurfaceKeys {
   static constexpr const char* kType = "curve_on_surface";
   int curve_model = 0;
   int surface_model = 0;
   int samples = 8;
+  bool follow = false;
 };
 
 using ScenePointTargetConstraint = SceneConstraintOf<PointTargetKeys>;

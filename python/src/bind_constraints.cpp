@@ -1,11 +1,13 @@
 // dnurbs.ConstraintSolver (constraints/constraint_solver.h) with the point, ball-joint, hinge and
 // control point constraints (constraints/point_constraints.h), the surface normal constraint and
-// the curve-on-surface joints (constraints/surface_constraints.h): holonomic constraints
-// stabilized with Baumgarte's method (Terzopoulos, Deformable Models, eqs. 1.39-1.40).
+// the curve-on-surface joints (constraints/surface_constraints.h) or following samples
+// (constraints/curve_on_surface_constraint.h, with curve_to_surface_distances): holonomic
+// constraints stabilized with Baumgarte's method (Terzopoulos, Deformable Models, eqs. 1.39-1.40).
 
 #include <pybind11/stl.h>
 
 #include "dnurbs/constraints/constraint_solver.h"
+#include "dnurbs/constraints/curve_on_surface_constraint.h"
 #include "dnurbs/constraints/point_constraints.h"
 #include "dnurbs/constraints/surface_constraints.h"
 #include "python/src/bindings.h"
@@ -62,8 +64,15 @@ void bind_surface_constraints(py::class_<ConstraintSolver>& solver) {
       .def(
           "add_curve_on_surface",
           [](ConstraintSolver& self, const System& system, int curve_model, int surface_model,
-             int sample_count, double alpha, double beta) {
+             int sample_count, double alpha, double beta, bool follow) {
             std::vector<int> indices;
+            if (follow) {
+              indices.push_back(self.add(
+                  system,
+                  evenly_sampled_curve_on_surface(system, curve_model, surface_model, sample_count),
+                  {alpha, beta}));
+              return indices;
+            }
             for (auto& constraint :
                  curve_on_surface_constraints(system, curve_model, surface_model, sample_count)) {
               indices.push_back(self.add(system, std::move(constraint), {alpha, beta}));
@@ -72,9 +81,13 @@ void bind_surface_constraints(py::class_<ConstraintSolver>& solver) {
           },
           py::arg("system"), py::arg("curve_model"), py::arg("surface_model"),
           py::arg("sample_count"), py::arg("alpha") = 20.0, py::arg("beta") = -1.0,
-          "Glues D-NURBS curve `curve_model` onto D-NURBS surface `surface_model`: ball joints at "
-          "`sample_count` curve parameters, each to the surface point nearest it now. Returns "
-          "the constraints' indices (a list).");
+          py::arg("follow") = false,
+          "Holds D-NURBS curve `curve_model` on D-NURBS surface `surface_model` at `sample_count` "
+          "curve parameters spread evenly over its domain. follow=False: ball joints (3 rows "
+          "each), each to the surface point nearest it now. follow=True: one constraint of "
+          "sample_count rows, the signed distance of each sample from its nearest surface point "
+          "re-found at every step (the curve may slide over the surface; needs sample_count >= "
+          "2). Returns the constraints' indices (a list).");
 }
 
 void bind_solver_details(py::class_<ConstraintSolver>& solver) {
@@ -181,6 +194,17 @@ void bind_constraint_solver(py::module_& module) {
 
 void bind_constraints(py::module_& module) {
   bind_constraint_solver(module);
+  module.def(
+      "curve_to_surface_distances",
+      [](const System& system, int curve_model, int surface_model,
+         const std::vector<double>& parameters) {
+        return array_from_vector(
+            curve_to_surface_distances(system, curve_model, surface_model, parameters));
+      },
+      py::arg("system"), py::arg("curve_model"), py::arg("surface_model"), py::arg("parameters"),
+      "Signed distances (#t,) of the curve model's points c(t) at `parameters` (#t,) from the "
+      "surface model at the current state: |c - s| at the nearest surface point s, signed by "
+      "n.(c - s).");
 }
 
 }  // namespace dnurbs::python
