@@ -22,6 +22,7 @@
 #include "dnurbs/io/output_path.h"
 #include "dnurbs/io/scene_fit.h"
 #include "dnurbs/io/shape_file.h"
+#include "dnurbs/surface/parametric_fe_mesh.h"
 #include "dnurbs/surface/parametric_surface.h"
 #include "dnurbs/surface/parametric_surface_tessellation.h"
 #include "dnurbs/surface/tessellation.h"
@@ -36,8 +37,9 @@ of "x y z" lines (.xyz, .txt, .csv) or any mesh assimp reads (its vertices are t
 With --out DIR it also writes DIR/surface.json (a shape file, as `dnurbs eval` reads) or
 DIR/superquadric.json (the printed JSON), and DIR/<shape>.obj, the fitted shape tessellated.
 
-  superquadric        rigid pose, sizes, squareness, taper and bend (radial distance, LBFGS
-                      with the analytic gradient)
+  superquadric        rigid pose, sizes, squareness, taper, bend, twist and shear (radial
+                      distance, LBFGS with the analytic gradient, then Levenberg-Marquardt);
+                      with --local also the local displacements d on the model's (u, v) mesh
   surface             a D-NURBS surface over the points' principal plane, by least squares
                       plus smoothness with closest-point re-projection
 options:
@@ -45,6 +47,16 @@ options:
   --resolution N      mesh segments per direction (default 32)
   --quiet             no progress lines (on stderr, at most one a second: the iterations of
                       the surface fit, the objective evaluations of the superquadric fit)
+options (superquadric):
+  --no-twist          hold the twist tau at 0
+  --no-shear          hold the shears sx, sy at 0
+  --bend-shape        fit the bend's offset b2 and frequency b3 too (held at 0 and 0.5)
+  --local             then fit the local displacements d = S q_d: the equilibrium of the
+                      membrane energy (the model's) and springs to the points; adds "local"
+                      to the JSON and d to the mesh
+  --local-cells NU NV cells of the displacement mesh in u and v (default 8 16)
+  --local-smoothness L  weight of the membrane energy against the mean squared distance
+                      (default 1e-4; larger is smoother)
 options (surface):
   --degree P          degree in u and v (default 3)
   --spans N           knot spans in u and v (default 4)
@@ -66,27 +78,51 @@ struct FitOutput {
   int resolution = 32;
 };
 
-int fit_superquadric_command(const Eigen::MatrixX3d& points, const FitOutput& output,
-                             std::ostream& out,
+// The body-frame surface p = s + d of a fit (d = 0 without a local stage).
+ParametricSurface fitted_body_surface(const SuperquadricFitResult& fit) {
+  const DeformableSuperquadricShape shape(fit.shape);
+  if (!fit.local) {
+    return parametric_surface(shape);
+  }
+  const ParametricFeMesh mesh(fit.local->mesh_cells_u, fit.local->mesh_cells_v);
+  const Eigen::VectorXd displacements = fit.local->displacements;
+  return ParametricSurface(
+      superquadric_parameter_domain(),
+      [shape, mesh, displacements](double u, double v) {
+        return Eigen::Vector3d(shape.point(u, v) +
+                               mesh.displacement(displacements, mesh.shape_values(u, v)).value);
+      },
+      {}, NormalOrientation::kSvCrossSu);
+}
+
+int fit_superquadric_command(const Eigen::MatrixX3d& points, SuperquadricFitSettings settings,
+                             const FitOutput& output, std::ostream& out,
                              const std::function<void(int, double)>& on_evaluation) {
-  SuperquadricFitSettings settings;
   settings.on_evaluation = on_evaluation;
   const SuperquadricFitResult fit = fit_superquadric(points, settings);
+  nlohmann::ordered_json json = {
+      {"shape", "superquadric"},
+      {"q_s", json_array(fit.shape)},
+      {"centre", json_array(fit.centre)},
+      {"rotation", json_array(Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9))},
+      {"rms_error", fit.rms_error},
+      {"max_error", fit.max_error}};
+  if (fit.local) {
+    json["local"] = {{"mesh_cells", {fit.local->mesh_cells_u, fit.local->mesh_cells_v}},
+                     {"q_d", json_array(fit.local->displacements)},
+                     {"rms_error", fit.local->rms_error},
+                     {"max_error", fit.local->max_error},
+                     {"global_rms_error", fit.local->global_rms_error},
+                     {"global_max_error", fit.local->global_max_error}};
+  }
   std::ostringstream text;
-  print_json(text,
-             {{"shape", "superquadric"},
-              {"q_s", json_array(fit.shape)},
-              {"centre", json_array(fit.centre)},
-              {"rotation", json_array(Eigen::Map<const Eigen::VectorXd>(fit.rotation.data(), 9))},
-              {"rms_error", fit.rms_error},
-              {"max_error", fit.max_error}});
+  print_json(text, json);
   if (output.directory) {
     std::filesystem::create_directories(*output.directory);
     write_file_atomically(output_file_path(*output.directory, "superquadric.json"), text.str());
-    // The body-frame surface moved to the fitted pose x = c + R s.
-    TriangleMesh mesh =
-        tessellate_surface(parametric_surface(DeformableSuperquadricShape(fit.shape)),
-                           output.resolution, 2 * output.resolution, "superquadric");
+    // The body-frame surface moved to the fitted pose x = c + R (s + d).
+    TriangleMesh mesh = tessellate_surface(fitted_body_surface(fit), output.resolution,
+                                           2 * output.resolution, "superquadric");
     mesh.vertices = (mesh.vertices * fit.rotation.transpose()).rowwise() + fit.centre.transpose();
     mesh.normals = mesh.normals * fit.rotation.transpose();
     export_mesh(mesh, output_file_path(*output.directory, "superquadric.obj"));
@@ -140,6 +176,12 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out, st
   std::string directory;
   FitOutput output;
   bool quiet = false;
+  SuperquadricFitSettings superquadric_settings;
+  bool no_twist = false;
+  bool no_shear = false;
+  bool local = false;
+  SuperquadricLocalFitSettings local_settings;
+  std::vector<int> local_cells;
   CLI::App app("dnurbs fit");
   app.add_option("SHAPE", shape)->required()->check(CLI::IsMember({"superquadric", "surface"}));
   app.add_option("POINTS", path)->required();
@@ -150,8 +192,23 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out, st
   app.add_option("--resolution", output.resolution)->transform(integer_in(3, 1024));
   app.add_option("--iterations", iterations)->transform(integer_in(1, 100000));
   app.add_flag("--quiet", quiet);
+  app.add_flag("--no-twist", no_twist);
+  app.add_flag("--no-shear", no_shear);
+  app.add_flag("--bend-shape", superquadric_settings.fit_bend_shape);
+  app.add_flag("--local", local);
+  app.add_option("--local-cells", local_cells)->expected(2)->transform(integer_in(2, 1000));
+  app.add_option("--local-smoothness", local_settings.smoothness)->check(positive_number());
   if (!parse_command_line(app, arguments, kFitHelp, out)) {
     return kExitOk;
+  }
+  superquadric_settings.fit_twist = !no_twist;
+  superquadric_settings.fit_shear = !no_shear;
+  if (!local_cells.empty()) {
+    local_settings.mesh_cells_u = local_cells[0];
+    local_settings.mesh_cells_v = local_cells[1];
+  }
+  if (local) {
+    superquadric_settings.local = local_settings;
   }
   if (*directory_option) {
     output.directory = directory;
@@ -170,7 +227,8 @@ int fit_command(const std::vector<std::string>& arguments, std::ostream& out, st
       progress.update(count, 0, detail.str());
     };
   }
-  const int status = superquadric ? fit_superquadric_command(points, output, out, on_progress)
+  const int status = superquadric ? fit_superquadric_command(points, superquadric_settings, output,
+                                                             out, on_progress)
                                   : fit_surface_command(points, degree, spans, smoothness,
                                                         iterations, output, out, on_progress);
   progress.finish();

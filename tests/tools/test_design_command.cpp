@@ -162,6 +162,9 @@ TEST(FitCommand, SuperquadricFileAndMeshMatchTheFit) {
   truth[P::kTaper2] = -0.1;
   truth[P::kBendAmplitude] = 0.15;
   truth[P::kBendFrequency] = 0.5;
+  truth[P::kTwist] = 0.4;
+  truth[P::kShearX] = 0.1;
+  truth[P::kShearY] = -0.15;
   const DeformableSuperquadricShape shape(truth);
   const Eigen::Vector3d centre(0.5, -1.0, 2.0);
   const auto directory = fresh_directory("fit_superquadric");
@@ -188,9 +191,10 @@ TEST(FitCommand, SuperquadricFileAndMeshMatchTheFit) {
   for (int i = 0; i < 14; ++i) {
     fitted[i] = written.at("q_s").at(static_cast<size_t>(i)).get<double>();
   }
-  // Noise-free points: the fit recovers the truth well inside 1e-3 (tests/design).
-  for (int i = P::kAspect1; i <= P::kBendAmplitude; ++i) {
-    EXPECT_NEAR(fitted[i], truth[i], 1e-3) << "q_s[" << i << "]";
+  // Noise-free points: the fit recovers the truth to round-off (tests/design: <= 1e-14); the
+  // JSON's 17 significant digits keep it.
+  for (int i = P::kAspect1; i <= P::kShearY; ++i) {
+    EXPECT_NEAR(fitted[i], truth[i], 1e-10) << "q_s[" << i << "]";
   }
   Eigen::Vector3d fitted_centre;
   Eigen::Matrix3d rotation;
@@ -210,6 +214,42 @@ TEST(FitCommand, SuperquadricFileAndMeshMatchTheFit) {
                                                      meshes.front().vertices.row(k).transpose())));
   }
   EXPECT_LT(worst, 1e-5);
+}
+
+// --local: a sphere with a Gaussian bump (height 0.1, angular width 0.3) fitted with local
+// displacements on a 12 x 24 mesh; the JSON gives q_d and both residuals, the OBJ holds s + d.
+TEST(FitCommand, SuperquadricLocalDisplacementsFollowABump) {
+  const auto directory = fresh_directory("fit_superquadric_local");
+  const auto points_path = directory / "bump.xyz";
+  {
+    std::ofstream file(points_path);
+    file.precision(17);
+    for (int i = 0; i < 24; ++i) {
+      for (int j = 0; j < 48; ++j) {
+        const double u = -std::numbers::pi / 2 + std::numbers::pi * (i + 0.5) / 24;
+        const double v = -std::numbers::pi + 2 * std::numbers::pi * (j + 0.5) / 48;
+        const Eigen::Vector3d n(std::cos(u) * std::cos(v), std::cos(u) * std::sin(v), std::sin(u));
+        const double angle = std::acos(std::clamp(n.x(), -1.0, 1.0));
+        const Eigen::Vector3d x = (1.0 + 0.1 * std::exp(-angle * angle / (2 * 0.09))) * n;
+        file << x.x() << " " << x.y() << " " << x.z() << "\n";
+      }
+    }
+  }
+  const auto out = directory / "out";
+  const auto result = run_dnurbs(
+      "fit superquadric " + points_path.string() +
+      " --local --local-cells 12 24 --local-smoothness 1e-5 --resolution 8 --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Json written = Json::parse(result.out);
+  const Json& local = written.at("local");
+  EXPECT_EQ(local.at("mesh_cells"), Json::parse("[12, 24]"));
+  EXPECT_EQ(local.at("q_d").size(), static_cast<size_t>(3 * (2 + 11 * 24)));
+  const double global_rms = local.at("global_rms_error").get<double>();
+  const double local_rms = local.at("rms_error").get<double>();
+  // tests/design measures a factor 23 on a 24 x 48 mesh; this coarser one still halves the
+  // residual several times over (measured in the commit message).
+  EXPECT_LT(local_rms, global_rms / 4.0);
+  EXPECT_FALSE(import_meshes(out / "superquadric.obj").empty());
 }
 
 TEST(FitCommand, BadDataExitsWithAMessageNamingIt) {
