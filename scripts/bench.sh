@@ -31,7 +31,7 @@ fi
 cmake -S "${root}" -B "${build}" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 jobs="$(nproc)"
 cmake --build "${build}" --target dnurbs_bench -j"${jobs}"
-for optional in spring_step_bench free_step_bench floor_bench normal_step_bench evaluation_bench closest_point_bench test_hardcase; do
+for optional in spring_step_bench free_step_bench floor_bench normal_step_bench face_refinement_bench evaluation_bench closest_point_bench test_hardcase; do
   cmake --build "${build}" --target "${optional}" -j"${jobs}" >/dev/null 2>&1 ||
     echo "bench.sh: target ${optional} not built (absent or failing); its table is skipped"
 done
@@ -65,6 +65,10 @@ fi
 normals="$(find "${build}/bench" -maxdepth 3 -type f -name normal_step_bench -perm -u+x | head -n 1)"
 if [ -n "${normals}" ]; then
   "${normals}" --out "${data}" "${quick[@]}" || { status=$?; echo "bench.sh: normal_step_bench failed"; }
+fi
+face="$(find "${build}/bench" -maxdepth 3 -type f -name face_refinement_bench -perm -u+x | head -n 1)"
+if [ -n "${face}" ]; then
+  "${face}" --out "${data}" "${quick[@]}" || { status=$?; echo "bench.sh: face_refinement_bench failed"; }
 fi
 evaluation="$(find "${build}/bench" -maxdepth 3 -type f -name evaluation_bench -perm -u+x | head -n 1)"
 if [ -n "${evaluation}" ]; then
