@@ -125,7 +125,8 @@ class RestrictedMesh {
   /// (zero if they cancel).
   Eigen::Vector3d averaged_facet_normal(int vertex) const;
   /// Every current triangle as the keys of its corners (apex first), sorted: equal for two meshes
-  /// over the same base exactly when they have the same triangles. A base vertex's key is its
+  /// over the same base when they have the same triangles, and different otherwise unless two
+  /// distinct vertices' keys collide (about n^2 / 2^64 for n vertices). A base vertex's key is its
   /// index in the base (a grid base: i (base_cells_v + 1) + j, seams identified); a split
   /// vertex's key is a 64-bit mix of its edge's two keys (order-free), with the top bit set.
   std::vector<std::array<std::uint64_t, 3>> triangle_keys() const;
