@@ -147,8 +147,10 @@ int info_command(const std::vector<std::string>& arguments, std::ostream& out) {
   out << "estimated cost per step: " << (all_constant ? 1 : 1 + iterations) << " solve(s) touching "
       << solve_total << " factor entries each"
       << (all_constant ? " (after one factorization at the first step)" : "")
-      << "; the naive paths would touch " << naive_solve_total << " ("
-      << ratio(naive_solve_total / solve_total) << "x)";
+      << "; the naive paths would touch " << naive_solve_total
+      << " ("
+      // a factor without off-diagonal entries (one free coordinate) touches none either way
+      << (solve_total > 0.0 ? ratio(naive_solve_total / solve_total) + "x" : "the same") << ")";
   if (simulation.constraints().row_count() > 0) {
     out << ", plus " << simulation.constraints().row_count()
         << " constraint rows (one back-substitution each when C_q changes)";

@@ -64,5 +64,15 @@ TEST(InfoCommand, ListsTheObstaclesAndTheContactMethod) {
   EXPECT_THAT(info.out, HasSubstr("obstacles: 3 (1 box, 1 plane, 1 sphere), projection contact"));
 }
 
+TEST(InfoCommand, AFactorWithoutOffDiagonalEntriesHasNoCostRatio) {
+  // The face's one dynamic parameter (jaw_open; the smile is keyed): a 1 x 1 factor touches no
+  // entries on either path, which once printed the ratio 0 / 0 as "-nanx"
+  const testing::CommandResult info =
+      testing::run_dnurbs("info " + (kExamples / "deformation_field.json").string());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("the naive paths would touch 0 (the same)"));
+  EXPECT_THAT(info.out, ::testing::Not(HasSubstr("nan")));
+}
+
 }  // namespace
 }  // namespace dnurbs
