@@ -36,7 +36,7 @@ std::optional<SceneFit> read_fit(const SceneReader& reader, const JsonValue& mod
   if (dnurbs) {
     reader.object(*value, fit_path, {"points", "degree", "spans", "smoothness", "iterations"});
   } else {
-    reader.object(*value, fit_path, {"points", "max_evaluations"});
+    reader.object(*value, fit_path, {"points", "max_evaluations", "twist", "shear", "bend_shape"});
   }
   SceneFit fit;
   fit.points =
@@ -47,6 +47,9 @@ std::optional<SceneFit> read_fit(const SceneReader& reader, const JsonValue& mod
   reader.number_key(*value, fit_path, "smoothness", fit.smoothness, 0.0, false);
   reader.integer_key(*value, fit_path, "iterations", fit.iterations, 1, 100000);
   reader.integer_key(*value, fit_path, "max_evaluations", fit.max_evaluations, 1, 100000000);
+  reader.boolean_key(*value, fit_path, "twist", fit.twist);
+  reader.boolean_key(*value, fit_path, "shear", fit.shear);
+  reader.boolean_key(*value, fit_path, "bend_shape", fit.bend_shape);
   return fit;
 }
 
@@ -60,6 +63,9 @@ JsonOut fit_json(const SceneFit& fit, bool dnurbs) {
     json["iterations"] = fit.iterations;
   } else {
     json["max_evaluations"] = fit.max_evaluations;
+    json["twist"] = fit.twist;
+    json["shear"] = fit.shear;
+    json["bend_shape"] = fit.bend_shape;
   }
   return json;
 }

@@ -31,8 +31,12 @@ struct SceneFit {
   int spans = 4;            ///< knot spans in each direction
   double smoothness = 0.0;  ///< DNurbsFitSettings::smoothness
   int iterations = 30;      ///< DNurbsFitSettings::max_iterations
-  /// Superquadric (fit_superquadric): SuperquadricFitSettings::max_evaluations.
+  /// Superquadric (fit_superquadric): SuperquadricFitSettings::max_evaluations, fit_twist,
+  /// fit_shear and fit_bend_shape.
   int max_evaluations = 20000;
+  bool twist = true;
+  bool shear = true;
+  bool bend_shape = false;
   bool operator==(const SceneFit&) const = default;
 };
 

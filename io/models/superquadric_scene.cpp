@@ -160,6 +160,9 @@ const SceneFit* SceneSuperquadric::pending_fit() const {
 void SceneSuperquadric::run_fit(const Eigen::MatrixX3d& points) {
   SuperquadricFitSettings fit_settings;
   fit_settings.max_evaluations = fit.value().max_evaluations;
+  fit_settings.fit_twist = fit.value().twist;
+  fit_settings.fit_shear = fit.value().shear;
+  fit_settings.fit_bend_shape = fit.value().bend_shape;
   const SuperquadricFitResult result = fit_superquadric(points, fit_settings);
   shape = result.shape;
   centre = result.centre;

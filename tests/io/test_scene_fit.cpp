@@ -76,7 +76,11 @@ TEST(SceneFit, FittedSuperquadricReproducesTheSampledShape) {
   const auto& spec = as<SceneSuperquadric>(scene.models[0]);
   ASSERT_TRUE(spec.fit.has_value());
   // generate_fit_points.py: sizes 1.2, 0.8, 0.6, e1 0.7, e2 1.3, taper 0.2, -0.1, no bend.
-  // Exact points: the error is the optimizer's stopping tolerance (2.4e-8 measured)
+  // Exact points: the Levenberg-Marquardt polish ends at round-off; 1e-6 is what an optimizer
+  // stopping tolerance would allow. Twist and shear are fitted and come back 0.
+  for (int k = 11; k < 14; ++k) {
+    EXPECT_NEAR(spec.shape(k), 0.0, 1e-10) << "q_s[" << k << "]";
+  }
   EXPECT_NEAR(spec.shape(0), 1.0, 1e-12);
   EXPECT_NEAR(spec.shape(1), 1.2, 1e-6);
   EXPECT_NEAR(spec.shape(2), 0.8, 1e-6);
@@ -98,6 +102,38 @@ TEST(SceneFit, FittedSuperquadricReproducesTheSampledShape) {
   const double sign = relative(0, 0) > 0.0 ? 1.0 : -1.0;
   EXPECT_LT((relative - Eigen::Vector3d(sign, sign, 1.0).asDiagonal().toDenseMatrix()).norm(),
             1e-6);
+}
+
+// "twist": false and "shear": false hold them at 0 (the fitter's fit_twist, fit_shear); the keys
+// are written back and a non-boolean is an error naming the key.
+TEST(SceneFit, SuperquadricFitKeysHoldTwistAndShear) {
+  const char* const text = R"json({
+    "models": [{"name": "blob", "type": "superquadric",
+                "fit": {"points": "fit_superquadric_points.xyz", "twist": false, "shear": false,
+                        "bend_shape": true}}],
+    "integrator": {"dt": 0.01},
+    "run": {"steps": 3}})json";
+  const Scene scene = fitted_scene(text, "fit.json", kData);
+  const auto& spec = as<SceneSuperquadric>(scene.models[0]);
+  ASSERT_TRUE(spec.fit.has_value());
+  EXPECT_FALSE(spec.fit->twist);
+  EXPECT_FALSE(spec.fit->shear);
+  EXPECT_TRUE(spec.fit->bend_shape);
+  EXPECT_EQ(spec.shape(11), 0.0);
+  EXPECT_EQ(spec.shape(12), 0.0);
+  EXPECT_EQ(spec.shape(13), 0.0);
+  EXPECT_NEAR(spec.shape(1), 1.2, 1e-10);
+  const std::string written = scene_to_json(parse_scene_json(text, "fit.json", kData));
+  EXPECT_THAT(written, ::testing::HasSubstr("\"twist\": false"));
+  EXPECT_THAT(written, ::testing::HasSubstr("\"bend_shape\": true"));
+  std::string bad = text;
+  bad.replace(bad.find("\"twist\": false"), 14, "\"twist\": 3");
+  try {
+    parse_scene_json(bad, "fit.json", kData);
+    ADD_FAILURE() << "no error for \"twist\": 3";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("models[0].fit.twist"));
+  }
 }
 
 TEST(SceneFit, FitRoundTripsThroughTheWriter) {
