@@ -261,6 +261,16 @@ void SceneReader::times(const JsonValue& object, const std::string& path,
   }
 }
 
+Interpolation SceneReader::interpolation(const JsonValue& value, const std::string& path) const {
+  for (const Interpolation kind :
+       {Interpolation::kCubic, Interpolation::kMonotone, Interpolation::kLinear}) {
+    if (value.is_string() && value.get<std::string>() == interpolation_name(kind)) {
+      return kind;
+    }
+  }
+  fail(path, "expected \"cubic\", \"monotone\" or \"linear\", got " + describe_json_value(value));
+}
+
 template <typename Schedule, typename ReadValue>
 Schedule SceneReader::schedule(const JsonValue& value, const std::string& path, bool constant,
                                const char* expected, const char* of,
@@ -273,7 +283,11 @@ Schedule SceneReader::schedule(const JsonValue& value, const std::string& path, 
   if (!value.is_object()) {
     fail(path, std::string("expected ") + expected + ", got " + describe_json_value(value));
   }
-  object(value, path, {"times", "values"});
+  object(value, path, {"times", "values", "interpolation"});
+  if (value.contains("interpolation")) {
+    schedule.interpolation =
+        interpolation(value["interpolation"], join_json_path(path, "interpolation"));
+  }
   const std::string values_path = join_json_path(path, "values");
   const JsonValue& values =
       array(require(value, path, "values", std::string("an array of ") + of), values_path, of);

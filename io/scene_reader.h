@@ -107,8 +107,11 @@ class SceneReader {
   double element(const JsonValue& array, const std::string& path, int i) const;
   void times(const JsonValue& object, const std::string& path, std::vector<double>& times,
              size_t value_count) const;
-  /// A schedule: a constant (when `constant`) or keyframes {"times": [...], "values": [...]},
-  /// each value read by read_value(json, path); `expected` and `of` name them in messages.
+  /// "cubic", "monotone" or "linear" (a schedule's "interpolation").
+  Interpolation interpolation(const JsonValue& value, const std::string& path) const;
+  /// A schedule: a constant (when `constant`) or keyframes {"times": [...], "values": [...],
+  /// "interpolation": ... (optional)}, each value read by read_value(json, path); `expected` and
+  /// `of` name them in messages.
   template <typename Schedule, typename ReadValue>
   Schedule schedule(const JsonValue& value, const std::string& path, bool constant,
                     const char* expected, const char* of, const ReadValue& read_value) const;

@@ -18,14 +18,18 @@ JsonOut schedule_json(const VectorSchedule& schedule) {
   for (const auto& v : schedule.values) {
     values.push_back(json_array<3>(v));
   }
-  return JsonOut{{"times", schedule.times}, {"values", values}};
+  return JsonOut{{"times", schedule.times},
+                 {"values", values},
+                 {"interpolation", interpolation_name(schedule.interpolation)}};
 }
 
 JsonOut schedule_json(const ScalarSchedule& schedule) {
   if (schedule.times.empty()) {
     return schedule.values.front();
   }
-  return JsonOut{{"times", schedule.times}, {"values", schedule.values}};
+  return JsonOut{{"times", schedule.times},
+                 {"values", schedule.values},
+                 {"interpolation", interpolation_name(schedule.interpolation)}};
 }
 
 }  // namespace dnurbs

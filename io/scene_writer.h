@@ -26,7 +26,7 @@ JsonOut json_array(const Eigen::Matrix<double, N, 1>& v) {
 JsonOut parameter_json(const Eigen::Vector2d& u);
 /// [[m11, m12], [m21, m22]].
 JsonOut matrix2_json(const Eigen::Matrix2d& m);
-/// A constant as its value, keyframes as {"times": [...], "values": [...]}.
+/// A constant as its value, keyframes as {"times": [...], "values": [...], "interpolation": ...}.
 JsonOut schedule_json(const VectorSchedule& schedule);
 JsonOut schedule_json(const ScalarSchedule& schedule);
 

@@ -4,11 +4,23 @@
 
 namespace dnurbs {
 
+const char* interpolation_name(Interpolation interpolation) {
+  switch (interpolation) {
+    case Interpolation::kCubic:
+      return "cubic";
+    case Interpolation::kLinear:
+      return "linear";
+    case Interpolation::kMonotone:
+      break;
+  }
+  return "monotone";
+}
+
 Eigen::Vector3d VectorSchedule::at(double time) const {
   if (times.empty()) {
     return values.front();
   }
-  return TargetTrajectory::keyframes(times, values).position(time);
+  return TargetTrajectory::keyframes(times, values, interpolation).position(time);
 }
 
 double ScalarSchedule::at(double time) const {
@@ -20,7 +32,7 @@ double ScalarSchedule::at(double time) const {
   for (double v : values) {
     points.emplace_back(v, 0.0, 0.0);
   }
-  return TargetTrajectory::keyframes(times, points).position(time).x();
+  return TargetTrajectory::keyframes(times, points, interpolation).position(time).x();
 }
 
 VectorOfTime vector_of_time(const VectorSchedule& schedule) {
@@ -29,13 +41,14 @@ VectorOfTime vector_of_time(const VectorSchedule& schedule) {
     return [value](double) { return Eigen::Vector3d(value); };
   }
   auto keyframes = std::make_shared<TargetTrajectory>(
-      TargetTrajectory::keyframes(schedule.times, schedule.values));
+      TargetTrajectory::keyframes(schedule.times, schedule.values, schedule.interpolation));
   return [keyframes](double t) { return keyframes->position(t); };
 }
 
 ScalarOfTime scalar_of_time(const ScalarSchedule& schedule) {
   VectorSchedule vector;
   vector.times = schedule.times;
+  vector.interpolation = schedule.interpolation;
   for (double v : schedule.values) {
     vector.values.emplace_back(v, 0.0, 0.0);
   }
@@ -47,7 +60,7 @@ TargetTrajectory trajectory(const VectorSchedule& schedule) {
   if (schedule.times.empty()) {
     return TargetTrajectory::fixed(schedule.values.front());
   }
-  return TargetTrajectory::keyframes(schedule.times, schedule.values);
+  return TargetTrajectory::keyframes(schedule.times, schedule.values, schedule.interpolation);
 }
 
 }  // namespace dnurbs

@@ -4,7 +4,7 @@ as OBJ and glTF.
 A cubic tensor-product D-NURBS surface (Terzopoulos, Deformable Models: Classic,
 Topology-Adaptive and Generalized Formulations, eq. 1.27, thin plate under tension eq. 1.20),
 clamped at its border, is pulled by two implicit springs whose targets move along keyframed
-paths (natural cubic splines through the keyframes); halfway, one spring is moved to a new
+paths (monotone cubics through the keyframes); halfway, one spring is moved to a new
 material point, and at the end it is removed and the sheet settles.
 
     PYTHONPATH=build/python python3 examples/python/sculpting.py --out sculpt-out

@@ -7,6 +7,7 @@
 #include "dnurbs/constraints/target_trajectory.h"
 #include "dnurbs/dynamics/integrators/integrator.h"
 #include "dnurbs/dynamics/integrators/static_equilibrium.h"
+#include "dnurbs/io/schedule.h"
 #include "python/src/bindings.h"
 #include "python/src/numpy_arrays.h"
 
@@ -27,7 +28,19 @@ Integrator make_integrator(const std::string& scheme, int newton_iterations,
   return Integrator(settings);
 }
 
-TargetTrajectory keyframes(const py::object& times, const py::object& points) {
+Interpolation interpolation_of(const std::string& name) {
+  for (const Interpolation kind :
+       {Interpolation::kCubic, Interpolation::kMonotone, Interpolation::kLinear}) {
+    if (name == interpolation_name(kind)) {
+      return kind;
+    }
+  }
+  throw make_error("interpolation: expected \"cubic\", \"monotone\" or \"linear\", got \"", name,
+                   "\"");
+}
+
+TargetTrajectory keyframes(const py::object& times, const py::object& points,
+                           const std::string& interpolation) {
   const std::vector<double> keys = list_from_array(times, "times");
   const Eigen::MatrixXd values =
       matrix_from_array(points, "points", static_cast<long>(keys.size()), 3);
@@ -35,7 +48,7 @@ TargetTrajectory keyframes(const py::object& times, const py::object& points) {
   for (Eigen::Index i = 0; i < values.rows(); ++i) {
     positions.emplace_back(values.row(i).transpose());
   }
-  return TargetTrajectory::keyframes(keys, positions);
+  return TargetTrajectory::keyframes(keys, positions, interpolation_of(interpolation));
 }
 
 }  // namespace
@@ -83,8 +96,12 @@ void bind_integrator(py::module_& module) {
           },
           py::arg("point"), "A target at rest at `point` (3,).")
       .def_static("keyframes", &keyframes, py::arg("times"), py::arg("points"),
-                  "Keyframes: times (k,) strictly increasing, points (k, 3), interpolated by a "
-                  "natural cubic spline; before the first and after the last the target rests.")
+                  py::arg("interpolation") = "monotone",
+                  "Keyframes: times (k,) strictly increasing, points (k, 3), interpolated per "
+                  "coordinate by \"monotone\" piecewise cubics (Fritsch & Carlson 1980: never "
+                  "beyond the two keyframes around, C1), a \"cubic\" natural spline (C2, may "
+                  "overshoot) or \"linear\" segments; before the first and after the last the "
+                  "target rests.")
       .def(
           "__call__",
           [](const TargetTrajectory& self, double time) {

@@ -4,6 +4,7 @@
 #include "dnurbs/io/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -255,7 +256,7 @@ TEST(SceneFile, SchedulesHoldConstantsAndInterpolateKeyframes) {
   VectorSchedule keyframes;
   keyframes.times = {0.0, 1.0, 3.0};
   keyframes.values = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 2, 0)};
-  // At a keyframe the spline passes through its value (rounding of the spline solve: 1e-14)
+  // At a keyframe the interpolant (monotone by default) passes through its value (1e-14)
   EXPECT_LT((keyframes.at(1.0) - Eigen::Vector3d(1, 0, 0)).norm(), 1e-14);
   // Before the first and after the last keyframe the value rests there
   EXPECT_EQ(keyframes.at(-1.0), Eigen::Vector3d(0, 0, 0));
@@ -263,8 +264,21 @@ TEST(SceneFile, SchedulesHoldConstantsAndInterpolateKeyframes) {
   ScalarSchedule pressure;
   pressure.times = {0.0, 2.0};
   pressure.values = {0.0, 4.0};
-  // Two keyframes: the natural spline is the straight line (rounding: 1e-14)
+  // Two keyframes: every interpolation is the straight line (rounding: 1e-14)
   EXPECT_NEAR(pressure.at(0.5), 1.0, 1e-14);
+  pressure.interpolation = Interpolation::kCubic;
+  EXPECT_NEAR(pressure.at(0.5), 1.0, 1e-14);
+  // swung_clay's push, keys -3, -3, 0 at 0, 1, 1.05: the default (monotone) holds -3 on [0, 1];
+  // the natural cubic spline reaches -3 - 400 / (21 sqrt 3) = -14.0 at t = 1 / sqrt 3
+  ScalarSchedule push;
+  push.times = {0.0, 1.0, 1.05};
+  push.values = {-3.0, -3.0, 0.0};
+  EXPECT_EQ(push.interpolation, Interpolation::kMonotone);
+  EXPECT_EQ(push.at(1.0 / std::sqrt(3.0)), -3.0);
+  push.interpolation = Interpolation::kCubic;
+  EXPECT_NEAR(push.at(1.0 / std::sqrt(3.0)), -3.0 - 400.0 / (21.0 * std::sqrt(3.0)), 1e-12);
+  push.interpolation = Interpolation::kLinear;
+  EXPECT_NEAR(push.at(1.025), -1.5, 1e-12);
 }
 
 TEST(SceneSimulation, EveryModelForceAndConstraintTypeBuildsAndSteps) {

@@ -64,6 +64,48 @@ TEST(SceneWind, KeysAreReadAndWrittenBackIdentically) {
   EXPECT_NE(scene_state_hash(changed), scene_state_hash(scene));
 }
 
+TEST(SceneSchedule, InterpolationIsReadWrittenBackAndRefusedNamingItsPath) {
+  const Scene scene = parse_scene_json(wind_scene(R"json([
+    {"type": "point", "model": "sheet", "at": [0.5, 0.5],
+     "force": {"times": [0, 1, 1.05], "values": [[-3, 0, 0], [-3, 0, 0], [0, 0, 0]],
+               "interpolation": "cubic"}},
+    {"type": "pressure", "model": "patch",
+     "pressure": {"times": [0, 1, 2], "values": [0, 2, 0], "interpolation": "linear"}},
+    {"type": "wind", "drag": 1, "velocity": {"times": [0, 1, 2], "values": [[0, 0, 0], [1, 0, 0], [1, 0, 0]]}}])json"));
+  const auto& point = dynamic_cast<const ScenePointForce&>(*scene.forces[0].spec);
+  const auto& pressure = dynamic_cast<const ScenePressure&>(*scene.forces[1].spec);
+  const auto& wind = dynamic_cast<const SceneWind&>(*scene.forces[2].spec);
+  EXPECT_EQ(point.force.interpolation, Interpolation::kCubic);
+  EXPECT_EQ(pressure.pressure.interpolation, Interpolation::kLinear);
+  EXPECT_EQ(wind.velocity.interpolation, Interpolation::kMonotone);  // absent: monotone
+  EXPECT_NEAR(pressure.pressure.at(1.5), 1.0, 1e-15);
+  const std::string written = scene_to_json(scene);
+  EXPECT_THAT(written, HasSubstr("\"interpolation\": \"cubic\""));
+  EXPECT_THAT(written, HasSubstr("\"interpolation\": \"linear\""));
+  EXPECT_THAT(written, HasSubstr("\"interpolation\": \"monotone\""));
+  const Scene again = parse_scene_json(written);
+  EXPECT_TRUE(again == scene) << written;
+  EXPECT_EQ(scene_to_json(again), written);
+  // The interpolation is part of the simulated state
+  Scene changed = again;
+  dynamic_cast<ScenePointForce&>(*changed.forces[0].spec).force.interpolation =
+      Interpolation::kMonotone;
+  EXPECT_FALSE(changed == scene);
+  EXPECT_NE(scene_state_hash(changed), scene_state_hash(scene));
+  const auto message = [](const std::string& forces) {
+    return testing::error_message([&] { (void)parse_scene_json(wind_scene(forces), "s.json"); });
+  };
+  EXPECT_THAT(
+      message(R"([{"type": "point", "model": 0, "at": [0.5, 0.5],
+                   "force": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]], "interpolation": "spline"}}])"),
+      HasSubstr("s.json: forces[0].force.interpolation: expected \"cubic\", \"monotone\" or "
+                "\"linear\", got string \"spline\""));
+  EXPECT_THAT(message(R"([{"type": "pressure", "model": 0,
+                           "pressure": {"times": [0, 1], "values": [0, 1], "interpolation": 3}}])"),
+              HasSubstr("forces[0].pressure.interpolation: expected \"cubic\", \"monotone\" or "
+                        "\"linear\", got number 3"));
+}
+
 TEST(SceneWind, EverySurfaceModelFeelsItAndNoCurve) {
   // Model -1: one force on each of the two surfaces, none on the rod
   const SceneSimulation simulation(parse_scene_json(

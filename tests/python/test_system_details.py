@@ -81,8 +81,26 @@ def test_integrator_counters_and_spline_velocity():
     assert integrator.factorization_count == 1
     assert integrator.last_newton_iterations == 0
     path = dnurbs.TargetTrajectory.keyframes([0.0, 1.0, 2.0], [[0, 0, 0], [0, 0, 1], [0, 0, 2]])
-    # A natural cubic spline through collinear, evenly spaced keyframes is the line itself.
+    # The monotone default and the natural cubic spline through collinear keyframes are the line.
     np.testing.assert_allclose(path.velocity(0.5), [0, 0, 1.0], atol=1e-14)
+
+
+def test_keyframe_interpolation_monotone_cubic_and_linear():
+    # examples/scenes/swung_clay.json's push: -3 held for 1 s, released to 0 in 0.05 s.
+    times = [0.0, 1.0, 1.05]
+    push = [[-3, 0, 0], [-3, 0, 0], [0, 0, 0]]
+    peak = 1.0 / np.sqrt(3.0)
+    monotone = dnurbs.TargetTrajectory.keyframes(times, push)
+    assert monotone(peak)[0] == -3.0  # the default holds the keyed value exactly
+    assert dnurbs.TargetTrajectory.keyframes(times, push, interpolation="monotone")(0.3)[0] == -3.0
+    # The natural spline's moment at t = 1 is 360 / 2.1: it reaches -3 - 400 / (21 sqrt 3)
+    cubic = dnurbs.TargetTrajectory.keyframes(times, push, interpolation="cubic")
+    np.testing.assert_allclose(cubic(peak)[0], -3.0 - 400.0 / (21.0 * np.sqrt(3.0)), atol=1e-12)
+    linear = dnurbs.TargetTrajectory.keyframes(times, push, interpolation="linear")
+    np.testing.assert_allclose(linear(1.025), [-1.5, 0, 0], atol=1e-12)
+    np.testing.assert_allclose(linear.velocity(1.025), [60.0, 0, 0], rtol=1e-12)
+    with pytest.raises(dnurbs.Error, match='expected "cubic", "monotone" or "linear", got "spline"'):
+        dnurbs.TargetTrajectory.keyframes(times, push, interpolation="spline")
 
 
 def test_point_to_point_constraint_joins_two_sheets():
