@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/common/bench_arguments.h"
 #include "bench/common/interleaved_medians.h"
 #include "dnurbs/core/error.h"
 #include "dnurbs/surface/adaptive_tessellation.h"
@@ -250,23 +251,20 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   dnurbs::bench::Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      options.budget = 0.01;
-      options.min_repeats = 1;
-    } else if (arg == "--out" && i + 1 < argc) {
-      options.out = argv[++i];
-    } else if (arg == "--face" && i + 1 < argc) {
-      options.face = argv[++i];
-    } else if (arg == "--base" && i + 1 < argc) {
-      options.base = argv[++i];
-    } else {
-      std::cerr << "face_refinement_bench: unknown argument '" << arg
-                << "' (usage: face_refinement_bench [--quick] [--out DIR] [--face GEOMETRY_IMAGE] "
-                   "[--base OBJ])\n";
-      return 2;
-    }
+  const auto unknown = dnurbs::bench::read_bench_arguments(
+      argc, argv,
+      [&] {
+        options.budget = 0.01;
+        options.min_repeats = 1;
+      },
+      {{"--out", [&](const char* value) { options.out = value; }},
+       {"--face", [&](const char* value) { options.face = value; }},
+       {"--base", [&](const char* value) { options.base = value; }}});
+  if (unknown) {
+    std::cerr << "face_refinement_bench: unknown argument '" << *unknown
+              << "' (usage: face_refinement_bench [--quick] [--out DIR] [--face GEOMETRY_IMAGE] "
+                 "[--base OBJ])\n";
+    return 2;
   }
   try {
     return dnurbs::bench::run(options);

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/bench_arguments.h"
 #include "bench/common/interleaved_medians.h"
 #include "dnurbs/dynamics/core/system.h"
 #include "dnurbs/dynamics/dnurbs/dnurbs_curve.h"
@@ -237,23 +238,19 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   dnurbs::bench::Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      options.quick = true;
-      options.budget = 0.02;
-    } else if (arg == "--out" && i + 1 < argc) {
-      options.out = argv[++i];
-    } else if (arg == "--only" && i + 1 < argc) {
-      options.only = argv[++i];
-    } else if (arg == "--budget" && i + 1 < argc) {
-      options.budget = std::stod(argv[++i]);
-    } else {
-      std::fprintf(
-          stderr,
-          "usage: free_step_bench [--quick] [--out DIR] [--budget SECONDS] [--only SHAPE]\n");
-      return 2;
-    }
+  const auto unknown = dnurbs::bench::read_bench_arguments(
+      argc, argv,
+      [&] {
+        options.quick = true;
+        options.budget = 0.02;
+      },
+      {{"--out", [&](const char* value) { options.out = value; }},
+       {"--only", [&](const char* value) { options.only = value; }},
+       {"--budget", [&](const char* value) { options.budget = std::stod(value); }}});
+  if (unknown) {
+    std::fprintf(
+        stderr, "usage: free_step_bench [--quick] [--out DIR] [--budget SECONDS] [--only SHAPE]\n");
+    return 2;
   }
   return dnurbs::bench::run(options);
 }

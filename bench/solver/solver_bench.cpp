@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/bench_arguments.h"
 #include "bench/solver/sheet_matrix.h"
 #include "dnurbs/core/cholmod_factor.h"
 #include "dnurbs/core/low_rank_update.h"
@@ -270,25 +271,23 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   dnurbs::bench::Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      options.quick = true;
-      options.sides = {10, 32};
-      options.spring_sides = {10, 32};
-      options.budget = 0.02;
-    } else if (arg == "--sides" && i + 1 < argc) {
-      options.sides = dnurbs::bench::parse_sides(argv[++i]);
-    } else if (arg == "--spring-sides" && i + 1 < argc) {
-      options.spring_sides = dnurbs::bench::parse_sides(argv[++i]);
-    } else if (arg == "--budget" && i + 1 < argc) {
-      options.budget = std::stod(argv[++i]);
-    } else {
-      std::fprintf(stderr,
-                   "usage: solver_bench [--quick] [--sides a,b,..] [--spring-sides a,b,..] "
-                   "[--budget seconds]\n");
-      return 2;
-    }
+  const auto unknown = dnurbs::bench::read_bench_arguments(
+      argc, argv,
+      [&] {
+        options.quick = true;
+        options.sides = {10, 32};
+        options.spring_sides = {10, 32};
+        options.budget = 0.02;
+      },
+      {{"--sides", [&](const char* value) { options.sides = dnurbs::bench::parse_sides(value); }},
+       {"--spring-sides",
+        [&](const char* value) { options.spring_sides = dnurbs::bench::parse_sides(value); }},
+       {"--budget", [&](const char* value) { options.budget = std::stod(value); }}});
+  if (unknown) {
+    std::fprintf(stderr,
+                 "usage: solver_bench [--quick] [--sides a,b,..] [--spring-sides a,b,..] "
+                 "[--budget seconds]\n");
+    return 2;
   }
   return dnurbs::bench::run(options);
 }

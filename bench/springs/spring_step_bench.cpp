@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/bench_arguments.h"
 #include "bench/common/interleaved_medians.h"
 #include "dnurbs/dynamics/core/system.h"
 #include "dnurbs/dynamics/dnurbs/dnurbs_surface.h"
@@ -169,24 +170,21 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   dnurbs::bench::Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      options.quick = true;
-      options.sides = {8, 16};
-      options.budget = 0.02;
-    } else if (arg == "--sides" && i + 1 < argc) {
-      options.sides = dnurbs::bench::parse_list(argv[++i]);
-    } else if (arg == "--out" && i + 1 < argc) {
-      options.out = argv[++i];
-    } else if (arg == "--budget" && i + 1 < argc) {
-      options.budget = std::stod(argv[++i]);
-    } else {
-      std::fprintf(stderr,
-                   "usage: spring_step_bench [--quick] [--sides 10,32,100] [--out DIR] "
-                   "[--budget SECONDS]\n");
-      return 2;
-    }
+  const auto unknown = dnurbs::bench::read_bench_arguments(
+      argc, argv,
+      [&] {
+        options.quick = true;
+        options.sides = {8, 16};
+        options.budget = 0.02;
+      },
+      {{"--sides", [&](const char* value) { options.sides = dnurbs::bench::parse_list(value); }},
+       {"--out", [&](const char* value) { options.out = value; }},
+       {"--budget", [&](const char* value) { options.budget = std::stod(value); }}});
+  if (unknown) {
+    std::fprintf(stderr,
+                 "usage: spring_step_bench [--quick] [--sides 10,32,100] [--out DIR] "
+                 "[--budget SECONDS]\n");
+    return 2;
   }
   return dnurbs::bench::run(options);
 }

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/bench_arguments.h"
 #include "bench/common/interleaved_medians.h"
 #include "dnurbs/dynamics/core/forces.h"
 #include "dnurbs/dynamics/core/system.h"
@@ -111,20 +112,18 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   dnurbs::bench::Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      options.sides = {17};
-      options.budget = 0.05;
-    } else if (arg == "--out" && i + 1 < argc) {
-      options.out = argv[++i];
-    } else if (arg == "--budget" && i + 1 < argc) {
-      options.budget = std::stod(argv[++i]);
-    } else {
-      std::cerr << "normal_step_bench: unknown argument '" << arg
-                << "' (usage: normal_step_bench [--quick] [--out DIR] [--budget SECONDS])\n";
-      return 2;
-    }
+  const auto unknown = dnurbs::bench::read_bench_arguments(
+      argc, argv,
+      [&] {
+        options.sides = {17};
+        options.budget = 0.05;
+      },
+      {{"--out", [&](const char* value) { options.out = value; }},
+       {"--budget", [&](const char* value) { options.budget = std::stod(value); }}});
+  if (unknown) {
+    std::cerr << "normal_step_bench: unknown argument '" << *unknown
+              << "' (usage: normal_step_bench [--quick] [--out DIR] [--budget SECONDS])\n";
+    return 2;
   }
   return dnurbs::bench::run(options);
 }
