@@ -16,21 +16,16 @@ Output: an OBJ of the (u, v) plane: "v u v 0" lines and "f a b c" lines (1-based
 counter-clockwise in (u, v)).
 """
 import argparse
+import os
+import sys
 
 import numpy as np
 from scipy.spatial import Delaunay
 
-# The canonical layout (FaceLayout in surface/deformable_face.h)
-MIDLINE = 0.5
-MOUTH_V = 18.0 / 64
-MOUTH_HALF_WIDTH = 0.085
-NOSE_TIP_V = 27.0 / 64
-EYE_V = 0.60
-EYE_OFFSET = 0.16
-BROW_V = 0.70
-BROW_INNER = 0.08
-BROW_OUTER = 0.26
-CHIN_V = 0.16
+# The canonical layout (FaceLayout in surface/deformable_face.h), from the faces' script
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from generate_face import (BROW_INNER, BROW_OUTER, BROW_V, CHIN_V,  # noqa: E402
+                           EYE_OFFSET, EYE_V, MIDLINE, MOUTH_HALF_WIDTH, MOUTH_V, NOSE_TIP_V)
 
 VERTICES = 113
 OUTLINE = 29
