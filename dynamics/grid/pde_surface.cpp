@@ -246,16 +246,25 @@ NodePositions PdeSurface::positions(ConstVectorRef q) const {
 }
 
 std::vector<int> PdeSurface::nodes_within(const Eigen::Vector3d& centre, double radius) const {
-  if (!(radius >= 0.0) || !std::isfinite(radius) || !centre.allFinite()) {
+  return dnurbs::nodes_within(initial_coordinates_, centre, radius);
+}
+
+std::vector<int> nodes_within(ConstVectorRef positions, const Eigen::Vector3d& centre,
+                              double radius) {
+  if (!(radius >= 0.0) || !std::isfinite(radius)) {
     throw make_error("force radius ", radius, " is not non-negative and finite");
   }
-  std::vector<int> slots;
-  for (size_t a = 0; a < active_.size(); ++a) {
-    if ((rest_.row(active_[a]).transpose() - centre).norm() <= radius) {
-      slots.push_back(static_cast<int>(a));
+  if (!centre.allFinite()) {
+    throw make_error("force region centre (", centre.x(), ", ", centre.y(), ", ", centre.z(),
+                     ") is not finite");
+  }
+  std::vector<int> nodes;
+  for (Eigen::Index a = 0; 3 * a < positions.size(); ++a) {
+    if ((positions.segment<3>(3 * a) - centre).norm() <= radius) {
+      nodes.push_back(static_cast<int>(a));
     }
   }
-  return slots;
+  return nodes;
 }
 
 Eigen::VectorXd PdeSurface::initial_coordinates() const {

@@ -151,6 +151,12 @@ class PdeSurface : public Model {
   ModelMatrices matrices_;
 };
 
+/// The nodes whose positions (3 per node in `positions`, node a at 3 a) are within `radius` of
+/// `centre`, ascending. Throws Error naming the radius if it is negative or not finite, or the
+/// centre if it is not finite.
+std::vector<int> nodes_within(ConstVectorRef positions, const Eigen::Vector3d& centre,
+                              double radius);
+
 /// Sub-steps to an output frame rate (Romero 2005, section 4.3: the solver runs until the frame's
 /// 1/frame_rate has elapsed): ceil(1 / (frame_rate max_dt)) equal steps of at most max_dt.
 /// Returns the number of steps. Throws Error naming max_dt or frame_rate if not positive.

@@ -133,8 +133,8 @@ std::unique_ptr<Model> ScenePdeSurface::build() const {
 void ScenePdeSurface::add_model_forces(System& system, int model) const {
   for (const ScenePdeRegion& region : regions) {
     if (region.force_radius) {
-      system.add_force(model, pde_force_region(vector_of_time(region.centre), *region.force_radius,
-                                               vector_of_time(region.force)));
+      system.add_force(model, pde_force_region(system.model(model), vector_of_time(region.centre),
+                                               *region.force_radius, vector_of_time(region.force)));
     }
   }
 }
