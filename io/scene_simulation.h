@@ -18,6 +18,8 @@
 #include "dnurbs/dynamics/integrators/integrator.h"
 #include "dnurbs/io/checkpoint.h"
 #include "dnurbs/io/scene.h"
+#include "dnurbs/io/scene_controls.h"
+#include "dnurbs/io/scene_cost.h"
 #include "dnurbs/io/scene_obstacles.h"
 #include "dnurbs/surface/triangle_mesh.h"
 
@@ -43,32 +45,6 @@ struct SceneSample {
   std::vector<Eigen::Vector3d> probes;  ///< positions of the scene's probes
 };
 
-/// Size and cost of one model (at its initial state, fixed coordinates eliminated), and what
-/// the library's automatic choice for it saves against the naive path.
-struct SceneModelCost {
-  std::string name;
-  std::string type;
-  int coordinates = 0;
-  int velocities = 0;
-  int fixed = 0;                   ///< fixed velocity coordinates
-  bool constant_matrices = false;  ///< M, D, K assembled and factored once
-  int kronecker_block = 0;         ///< 3 when x, y, z share one scalar matrix
-  /// Non-zeros of M + D + K over the free coordinates (of the scalar matrix when
-  /// kronecker_block), and of L of its LDL^T factor (AMD ordering, as the integrators use)
-  long long matrix_non_zeros = 0;
-  long long factor_non_zeros = 0;
-  /// Work of one solve in factor entries touched: 2 nnz(L) per right-hand side, plus the
-  /// factorization (sum of squared column counts of L) when the matrices change with the state
-  double solve_work = 0.0;
-  /// The automatic choice (fixed weights, rigid or global superquadric parts, deformation
-  /// regions; empty when the model takes the naive path) and the naive path's active
-  /// coordinates, matrix kind and solve work
-  std::string automatic_choice;
-  int naive_active = 0;
-  bool naive_constant_matrices = false;
-  double naive_solve_work = 0.0;
-};
-
 class SceneSimulation {
  public:
   /// Runs the scene's pending fits (fit_initial_shapes) and builds everything; throws Error
@@ -88,9 +64,10 @@ class SceneSimulation {
   int steps_done() const { return steps_; }
 
   /// Advances one integrator.dt (then projects the nodes out of the obstacles with projection
-  /// contact). Throws SimulationDiverged (state back to the last good one)
-  /// if the integrator rejects the step or its energy fails the energy budget (plastic rest
-  /// shapes back too).
+  /// contact; models before their start frame stay at their initial state, and at the start of a
+  /// frame resets and keyed materials apply: io/scene_controls.h). Throws SimulationDiverged (state
+  /// back to the last good one) if the integrator rejects the step or its energy fails the energy
+  /// budget (plastic rest shapes back too).
   void step();
 
   SceneSample sample() const;
@@ -152,6 +129,7 @@ class SceneSimulation {
   std::vector<double> tube_radii_;  ///< curves and snakes: tube radius of their meshes
   EnergyBudget budget_;
   SceneContacts contacts_;  ///< obstacles: penalty forces in system_, or projection per step
+  SceneControls controls_;  ///< keyed materials, start frames and resets of the models
   std::vector<std::string> force_labels_;   ///< what each System force is, for reports
   std::vector<std::string> spring_labels_;  ///< what each System spring id is
 };

@@ -5,6 +5,7 @@
 // Shape::Create(parameters): every type owns its keys). The specs hold the library's own
 // settings and material structs.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,6 +41,22 @@ struct SceneFit {
   bool operator==(const SceneFit&) const = default;
 };
 
+/// What a model's keys control over a run, beyond the model built at time 0 (Romero 2005,
+/// section 5.2.1.2: the PDE tool's keyable attributes and start frame; section 5.3: its reset).
+/// Frames are the run's (scene.h: `substeps` steps each, one step when the run is not in frames);
+/// io/scene_controls.h applies them.
+struct SceneModelControls {
+  /// The model's material parameters (Model::set_material_parameters) at a time, or empty when
+  /// none of the type's material keys is keyed. Throws SceneKeyError naming the key
+  /// (".material.density") when a keyed value at that time is out of its range.
+  std::function<Eigen::VectorXd(double)> material;
+  /// The model stays at its initial state, unstepped, until this frame (0: from the start).
+  int start_frame = 0;
+  /// Frames, ascending, at which the model returns to its initial state (positions, velocities
+  /// and a plastic rest shape).
+  std::vector<int> reset_frames;
+};
+
 /// One model of a scene: its type's keys, the library model they build, its fit and the naive
 /// path of the cost report.
 class SceneModelSpec {
@@ -64,6 +81,8 @@ class SceneModelSpec {
   virtual std::vector<std::pair<int, double>> prescribed_coordinates(double /*time*/) const {
     return {};
   }
+  /// The keyed material, start frame and resets of the model. Default: none.
+  virtual SceneModelControls controls() const { return {}; }
   /// An estimate of the memory the built model and its step will need, checked before it is
   /// built (core/memory_budget.h), with the key to lower: {bytes, key}. Default {0, ""}: models
   /// whose size is bounded by their shape file or keys.

@@ -129,6 +129,11 @@ int Model::flow_rest_shape(ConstVectorRef /*q*/, double /*dt*/) {
   return 0;
 }
 
+bool Model::set_material_parameters(ConstVectorRef values) {
+  throw make_error("material parameters: ", values.size(),
+                   " given, but this model's material is fixed (it has no keyable parameters)");
+}
+
 void Model::restore_flowing_rest_coordinates(ConstVectorRef rest) {
   throw make_error("rest coordinates: ", rest.size(),
                    " given, but this model's rest shape does not flow (it has none to restore)");

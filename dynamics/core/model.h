@@ -248,6 +248,17 @@ class Model {
   /// and returns how many were frozen. Default: throws Error (not supported).
   virtual int freeze_outside(const SculptedRegion& region, int margin);
 
+  // Keyable material (a run's schedules: Romero 2005, section 5.2.1.2) ------------------------
+  /// The material parameters a run may change, in the model's own order (PdeSurface:
+  /// pde_material_parameters); empty (the default) when the model's material is fixed.
+  virtual Eigen::VectorXd material_parameters() const { return {}; }
+  /// Sets them (the size of material_parameters(); Error naming the value, the model unchanged,
+  /// when one is out of range) and rebuilds what depends on them; returns true if M, D or K
+  /// changed (false when only forces did: the PDE surface's boundary tangents). A System's model
+  /// changes through System::set_material_parameters, which tells the integrators. Default:
+  /// throws Error (no keyable material).
+  virtual bool set_material_parameters(ConstVectorRef values);
+
   // Plastic flow (dynamics/core/plastic_flow.h) -----------------------------------------------
   /// After a step of dt to q (coordinate_count()): moves the rest shape of a model whose rest
   /// shape yields and returns the number of nodes that yielded; 0 for other models (default).

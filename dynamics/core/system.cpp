@@ -165,6 +165,22 @@ void System::fix_point(int model, int point) {
   refresh_fixed();
 }
 
+bool System::set_material_parameters(int i, ConstVectorRef values) {
+  check_index(i);
+  Model& m = *models_[static_cast<size_t>(i)];
+  const Eigen::VectorXd current = m.material_parameters();
+  if (current.size() == values.size() && current == values) {
+    return false;
+  }
+  const bool matrices = m.set_material_parameters(values);
+  accelerations_valid_ = false;
+  if (matrices) {
+    revision_ = next_revision();
+    rebuild_caches();
+  }
+  return true;
+}
+
 void System::fix_border(int model) {
   check_index(model);
   models_[static_cast<size_t>(model)]->fix_border();

@@ -158,8 +158,19 @@ class System {
   Eigen::VectorXd flowing_rest_coordinates() const;
   void restore_flowing_rest_coordinates(ConstVectorRef rest);
 
-  /// Changes whenever models are added or points fixed (integrators refactor when it changes);
-  /// unique across the process's systems (a copy keeps its original's until it changes).
+  // Keyable material (Model::material_parameters) ------------------------------------------
+  /// Model::set_material_parameters(values) on the System's copy of model i, between steps:
+  /// the state stays, the acceleration of the last step is invalidated (it belongs to the old
+  /// material: Newmark recomputes it), and when M, D or K changed the constant matrices are
+  /// taken again and the revision changes (integrators refactor once; a change of forces alone,
+  /// the PDE surface's tangents, keeps the factorization). Returns false, changing nothing, when
+  /// the values equal the model's current ones. Throws the model's Error (nothing changed) for
+  /// a bad value or size, or Error naming i out of range.
+  bool set_material_parameters(int i, ConstVectorRef values);
+
+  /// Changes whenever models are added, points fixed or materials set (integrators refactor when
+  /// it changes); unique across the process's systems (a copy keeps its original's until it
+  /// changes).
   std::uint64_t revision() const { return revision_; }
 
  private:

@@ -2,24 +2,41 @@
 
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "dnurbs/core/error.h"
 
 namespace dnurbs {
 
-Force pde_force_region(VectorOfTime centre, double force_radius, VectorOfTime force) {
+Force pde_force_region(const Model& surface, VectorOfTime centre, double force_radius,
+                       VectorOfTime force) {
   if (!(force_radius >= 0.0) || !std::isfinite(force_radius)) {
     throw make_error("force radius ", force_radius, " is not non-negative and finite");
   }
   if (!centre || !force) {
     throw make_error("force region has no ", !centre ? "centre" : "force", " function");
   }
-  return [centre = std::move(centre), force_radius, force = std::move(force)](
-             const Model& model, double t, ConstVectorRef /*q*/, ConstVectorRef /*qd*/,
-             VectorRef generalized) {
-    const auto* surface = dynamic_cast<const PdeSurface*>(&model);
-    if (surface == nullptr) {
-      throw make_error("a force region acts on a PDE surface only");
+  const int size = surface.velocity_count();
+  if (surface.coordinate_count() != size || size % 3 != 0) {
+    throw make_error("a force region acts on node positions, 3 coordinates per node: a model of ",
+                     surface.coordinate_count(), " coordinates and ", size,
+                     " velocities has no such nodes");
+  }
+  // The nodes' rest positions, once (Romero 2005, section 5: the force region is found at rest)
+  const Eigen::VectorXd initial = surface.initial_coordinates();
+  std::vector<int> offsets(static_cast<size_t>(size / 3));
+  Eigen::VectorXd rest(size);
+  for (int a = 0; a < size / 3; ++a) {
+    offsets[static_cast<size_t>(a)] = surface.control_point_offset(a);
+    rest.segment<3>(3 * a) = initial.segment<3>(offsets[static_cast<size_t>(a)]);
+  }
+  return [centre = std::move(centre), force_radius, force = std::move(force), size,
+          offsets = std::move(offsets),
+          rest = std::move(rest)](const Model& model, double t, ConstVectorRef /*q*/,
+                                  ConstVectorRef /*qd*/, VectorRef generalized) {
+    if (model.velocity_count() != size) {
+      throw make_error("a force region found on a model of ", size,
+                       " velocities is applied to a model of ", model.velocity_count());
     }
     const Eigen::Vector3d at = centre(t);
     if (!at.allFinite()) {
@@ -28,8 +45,8 @@ Force pde_force_region(VectorOfTime centre, double force_radius, VectorOfTime fo
     }
     // Romero 2005, section 5: every node of the force region receives the force components
     const Eigen::Vector3d f = force(t);
-    for (const int slot : surface->nodes_within(at, force_radius)) {
-      generalized.segment<3>(surface->control_point_offset(slot)) += f;
+    for (const int node : nodes_within(rest, at, force_radius)) {
+      generalized.segment<3>(offsets[static_cast<size_t>(node)]) += f;
     }
   };
 }

@@ -24,11 +24,16 @@
 
 namespace dnurbs {
 
-/// The force force(t) on each active node of a PdeSurface within `force_radius` of centre(t) (at
-/// rest; PdeSurface::nodes_within). Throws Error naming the value for a radius that is negative
-/// or not finite, or without a centre or force function; applied to a model that is not a
-/// PdeSurface, or at a time where the centre is not finite, the force throws Error.
-Force pde_force_region(VectorOfTime centre, double force_radius, VectorOfTime force);
+/// The force force(t) on each node of `surface` within `force_radius` of centre(t) at rest: a
+/// PdeSurface (its active nodes, PdeSurface::nodes_within), or any model whose coordinates are
+/// node positions, 3 per node from Model::control_point_offset. The nodes' rest positions are
+/// read once, here, from surface.initial_coordinates(); the force acts on a model of the same
+/// size (the System's copy of `surface`). Throws Error naming the value for a radius that is
+/// negative or not finite, without a centre or force function, or for a model whose coordinates
+/// are not 3 per node; applied to a model of another size, or at a time where the centre is not
+/// finite, the force throws Error.
+Force pde_force_region(const Model& surface, VectorOfTime centre, double force_radius,
+                       VectorOfTime force);
 
 /// The deformation regions that a region of `deformation_radius` sweeps while its centre follows
 /// centre(t) for start <= t <= end: regions of radius deformation_radius + max_move around the

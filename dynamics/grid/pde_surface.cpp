@@ -24,17 +24,7 @@ void check_coefficient(double value, const char* name, bool positive) {
   }
 }
 
-}  // namespace
-
-PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
-                       const PdeSurfaceMaterial& material,
-                       const std::vector<DeformationRegion>& regions)
-    : grid_(grid), material_(material), rest_(rest) {
-  if (grid.nu() < 3 || grid.nv() < 3) {
-    throw make_error("PDE surface grid of ", grid.nu(), " by ", grid.nv(),
-                     " nodes is smaller than the 3 by 3 nodes it needs");
-  }
-  check_grid_positions(grid, rest, "rest position");
+void check_material(const PdeSurfaceMaterial& material) {
   check_coefficient(material.b, "b", false);
   check_coefficient(material.c, "c", false);
   check_coefficient(material.d, "d", false);
@@ -49,8 +39,23 @@ PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
       throw make_error("PDE surface boundary tangent ", name, " = ", value, " is not finite");
     }
   }
+}
+
+}  // namespace
+
+PdeSurface::PdeSurface(const Grid& grid, const NodePositions& rest,
+                       const PdeSurfaceMaterial& material,
+                       const std::vector<DeformationRegion>& regions)
+    : grid_(grid), material_(material), rest_(rest) {
+  if (grid.nu() < 3 || grid.nv() < 3) {
+    throw make_error("PDE surface grid of ", grid.nu(), " by ", grid.nv(),
+                     " nodes is smaller than the 3 by 3 nodes it needs");
+  }
+  check_grid_positions(grid, rest, "rest position");
+  check_material(material);
   choose_active_nodes(regions);
-  build_matrices();
+  build_unit_matrices();
+  set_material(material);
 }
 
 void PdeSurface::choose_active_nodes(const std::vector<DeformationRegion>& regions) {
@@ -111,11 +116,10 @@ void PdeSurface::choose_active_nodes(const std::vector<DeformationRegion>& regio
   }
 }
 
-void PdeSurface::build_matrices() {
+void PdeSurface::build_unit_matrices() {
   const int nu = grid_.nu();
   const int nv = grid_.nv();
   const int n = grid_.node_count();
-  const PdeSurfaceMaterial& material = material_;
   // Rest normals for the boundary tangents.
   const GridDifferenceOperators operators = grid_difference_operators(grid_);
   const NodePositions t1 = operators.t1 * rest_;
@@ -128,13 +132,14 @@ void PdeSurface::build_matrices() {
                                  : Eigen::RowVector3d::Zero();
   }
 
-  // Romero 2005, eq. 8 by central differences, times the node area h^2.
+  // Romero 2005, eq. 8 by central differences, times the node area h^2, for b = c = d = 1.
   const double h = grid_.spacing();
-  const double area = h * h;
-  const double h4 = h * h * h * h;
+  const double unit = h * h / (h * h * h * h);
   const int active_count = static_cast<int>(active_.size());
-  tangent_force_ = Eigen::VectorXd::Zero(3 * active_count);
-  std::vector<Eigen::Triplet<double>> scalar;
+  std::array<std::vector<Eigen::Triplet<double>>, 3> triplets;  // b, c, d
+  for (Eigen::VectorXd& tangent : unit_tangent_force_) {
+    tangent = Eigen::VectorXd::Zero(3 * active_count);
+  }
   const auto slot_at = [&](int i, int j) {
     return i < 0 || j < 0 || i >= nu || j >= nv ? -1
                                                 : slot_[static_cast<size_t>(grid_.index(i, j))];
@@ -142,53 +147,73 @@ void PdeSurface::build_matrices() {
   for (int a = 0; a < active_count; ++a) {
     const auto [i, j] = grid_.node(active_[static_cast<size_t>(a)]);
     // Fourth differences along u (b) and v (d): r(-2) - 4 r(-1) + 6 r(0) - 4 r(1) + r(2).
-    const std::array<std::array<int, 2>, 2> axes{{{1, 0}, {0, 1}}};
-    for (int axis = 0; axis < 2; ++axis) {
-      const double coefficient = (axis == 0 ? material.b : material.d) * area / h4;
-      if (coefficient == 0.0) {
-        continue;
-      }
-      const int di = axes[static_cast<size_t>(axis)][0];
-      const int dj = axes[static_cast<size_t>(axis)][1];
+    for (const int axis : {0, 1}) {
+      std::vector<Eigen::Triplet<double>>& fourth = triplets[axis == 0 ? 0 : 2];
+      const int di = axis == 0 ? 1 : 0;
+      const int dj = 1 - di;
       double diagonal = 6.0;
       for (const int side : {-1, 1}) {
         const int near = slot_at(i + side * di, j + side * dj);
         if (near >= 0) {
-          scalar.emplace_back(a, near, -4.0 * coefficient);
+          fourth.emplace_back(a, near, -4.0 * unit);
           const int far = slot_at(i + 2 * side * di, j + 2 * side * dj);
           if (far >= 0) {
-            scalar.emplace_back(a, far, coefficient);
+            fourth.emplace_back(a, far, unit);
           }
         } else {
           // Boundary node at rest; ghost beyond it r(2) = r(0) - 2 h s n0 (displacements).
           diagonal += 1.0;
-          const double s = axis == 0 ? (side < 0 ? material.tangent_u0 : material.tangent_u1)
-                                     : (side < 0 ? material.tangent_v0 : material.tangent_v1);
           const int boundary = grid_.index(i + side * di, j + side * dj);
-          tangent_force_.segment<3>(3 * a) +=
-              coefficient * 2.0 * h * s * normal.row(boundary).transpose();
+          unit_tangent_force_[static_cast<size_t>(2 * axis + (side < 0 ? 0 : 1))].segment<3>(
+              3 * a) += unit * 2.0 * h * normal.row(boundary).transpose();
         }
       }
-      scalar.emplace_back(a, a, diagonal * coefficient);
+      fourth.emplace_back(a, a, diagonal * unit);
     }
     // Mixed difference (D_uu D_vv r): weights (1, -2, 1) (x) (1, -2, 1).
-    const double mixed = material.c * area / h4;
-    if (mixed != 0.0) {
-      const std::array<double, 3> w{1.0, -2.0, 1.0};
-      for (int p = -1; p <= 1; ++p) {
-        for (int r = -1; r <= 1; ++r) {
-          const int other = slot_at(i + p, j + r);
-          if (other >= 0) {
-            scalar.emplace_back(
-                a, other, mixed * w[static_cast<size_t>(p + 1)] * w[static_cast<size_t>(r + 1)]);
-          }
+    const std::array<double, 3> w{1.0, -2.0, 1.0};
+    for (int p = -1; p <= 1; ++p) {
+      for (int r = -1; r <= 1; ++r) {
+        const int other = slot_at(i + p, j + r);
+        if (other >= 0) {
+          triplets[1].emplace_back(
+              a, other, unit * w[static_cast<size_t>(p + 1)] * w[static_cast<size_t>(r + 1)]);
         }
       }
     }
   }
-  SparseMatrix scalar_stiffness(active_count, active_count);
-  scalar_stiffness.setFromTriplets(scalar.begin(), scalar.end());
-  matrices_.stiffness = kronecker_identity(scalar_stiffness, 3);
+  for (size_t k = 0; k < 3; ++k) {
+    unit_stiffness_[k].resize(active_count, active_count);
+    unit_stiffness_[k].setFromTriplets(triplets[k].begin(), triplets[k].end());
+  }
+  rest_coordinates_.resize(3 * active_count);
+  for (int a = 0; a < active_count; ++a) {
+    rest_coordinates_.segment<3>(3 * a) = rest_.row(active_[static_cast<size_t>(a)]).transpose();
+  }
+  initial_coordinates_ = rest_coordinates_;
+}
+
+void PdeSurface::set_material(const PdeSurfaceMaterial& material) {
+  check_material(material);
+  material_ = material;
+  // K = b K_b + c K_c + d K_d and t = b (su0 t_u0 + su1 t_u1) + d (sv0 t_v0 + sv1 t_v1) from the
+  // unit matrices and forces (header comment); a zero coefficient adds no entries
+  const int active_count = static_cast<int>(active_.size());
+  SparseMatrix scalar(active_count, active_count);
+  for (const auto& [coefficient, unit] :
+       std::array<std::pair<double, const SparseMatrix*>, 3>{{{material.b, &unit_stiffness_[0]},
+                                                              {material.d, &unit_stiffness_[2]},
+                                                              {material.c, &unit_stiffness_[1]}}}) {
+    if (coefficient != 0.0) {
+      scalar += coefficient * *unit;
+    }
+  }
+  matrices_.stiffness = kronecker_identity(scalar, 3);
+  tangent_force_ = material.b * (material.tangent_u0 * unit_tangent_force_[0] +
+                                 material.tangent_u1 * unit_tangent_force_[1]) +
+                   material.d * (material.tangent_v0 * unit_tangent_force_[2] +
+                                 material.tangent_v1 * unit_tangent_force_[3]);
+  const double area = grid_.spacing() * grid_.spacing();
   const int size = 3 * active_count;
   SparseMatrix identity(size, size);
   identity.setIdentity();
@@ -196,11 +221,46 @@ void PdeSurface::build_matrices() {
   matrices_.damping = material.damping_density > 0.0
                           ? SparseMatrix((material.damping_density * area) * identity)
                           : SparseMatrix(size, size);
-  rest_coordinates_.resize(size);
-  for (int a = 0; a < active_count; ++a) {
-    rest_coordinates_.segment<3>(3 * a) = rest_.row(active_[static_cast<size_t>(a)]).transpose();
+}
+
+Eigen::VectorXd PdeSurface::material_parameters() const {
+  return pde_material_parameters(material_);
+}
+
+bool PdeSurface::set_material_parameters(ConstVectorRef values) {
+  const PdeSurfaceMaterial material = pde_material_from_parameters(values);
+  const PdeSurfaceMaterial& old = material_;
+  const bool matrices = material.b != old.b || material.c != old.c || material.d != old.d ||
+                        material.mass_density != old.mass_density ||
+                        material.damping_density != old.damping_density;
+  set_material(material);
+  return matrices;
+}
+
+Eigen::VectorXd pde_material_parameters(const PdeSurfaceMaterial& material) {
+  Eigen::VectorXd values(kPdeMaterialParameterCount);
+  values << material.b, material.c, material.d, material.mass_density, material.damping_density,
+      material.tangent_u0, material.tangent_u1, material.tangent_v0, material.tangent_v1;
+  return values;
+}
+
+PdeSurfaceMaterial pde_material_from_parameters(ConstVectorRef values) {
+  if (values.size() != kPdeMaterialParameterCount) {
+    throw make_error("PDE surface material parameters have ", values.size(), " entries, not ",
+                     kPdeMaterialParameterCount,
+                     " (b, c, d, density, damping, su0, su1, sv0, sv1)");
   }
-  initial_coordinates_ = rest_coordinates_;
+  PdeSurfaceMaterial material;
+  material.b = values(0);
+  material.c = values(1);
+  material.d = values(2);
+  material.mass_density = values(3);
+  material.damping_density = values(4);
+  material.tangent_u0 = values(5);
+  material.tangent_u1 = values(6);
+  material.tangent_v0 = values(7);
+  material.tangent_v1 = values(8);
+  return material;
 }
 
 void PdeSurface::set_plastic_flow(const std::optional<PlasticFlow>& flow) {
@@ -246,16 +306,25 @@ NodePositions PdeSurface::positions(ConstVectorRef q) const {
 }
 
 std::vector<int> PdeSurface::nodes_within(const Eigen::Vector3d& centre, double radius) const {
-  if (!(radius >= 0.0) || !std::isfinite(radius) || !centre.allFinite()) {
+  return dnurbs::nodes_within(initial_coordinates_, centre, radius);
+}
+
+std::vector<int> nodes_within(ConstVectorRef positions, const Eigen::Vector3d& centre,
+                              double radius) {
+  if (!(radius >= 0.0) || !std::isfinite(radius)) {
     throw make_error("force radius ", radius, " is not non-negative and finite");
   }
-  std::vector<int> slots;
-  for (size_t a = 0; a < active_.size(); ++a) {
-    if ((rest_.row(active_[a]).transpose() - centre).norm() <= radius) {
-      slots.push_back(static_cast<int>(a));
+  if (!centre.allFinite()) {
+    throw make_error("force region centre (", centre.x(), ", ", centre.y(), ", ", centre.z(),
+                     ") is not finite");
+  }
+  std::vector<int> nodes;
+  for (Eigen::Index a = 0; 3 * a < positions.size(); ++a) {
+    if ((positions.segment<3>(3 * a) - centre).norm() <= radius) {
+      nodes.push_back(static_cast<int>(a));
     }
   }
-  return slots;
+  return nodes;
 }
 
 Eigen::VectorXd PdeSurface::initial_coordinates() const {

@@ -24,11 +24,21 @@
 // factor once; the model does not claim the S (x) I_3 layout (kronecker_block_size() = 0) because
 // the integrators' Kronecker path assumes f_int = -K q.
 //
+// Keyable material (Romero 2005, section 5.2.1.2: density, damping, b, c, d and the four boundary
+// tangents are the tool's keyable attributes): set_material changes them between steps. K is
+// linear in b, c, d, M in rho, D in gamma and t in b su0, b su1, d sv0, d sv1, so the constructor
+// keeps the unit matrices K_b, K_c, K_d (b = c = d = 1) and unit tangent forces, and set_material
+// only recombines them: no grid pass (a twentieth of a factorization of the step matrix on 51 x 51
+// to 201 x 201 grids). In a running System change them through System::set_material_parameters
+// (the Model contract's material_parameters, in the order of pde_material_parameters), which
+// makes the integrators refactor when M, D or K changed (not for the tangents alone).
+//
 // Plastic behaviour (Romero 2005, section 1: the tool's surfaces are to behave as clay as well as
 // elastically): with set_plastic_flow the rest positions r0 of the active nodes yield towards
 // their positions by the rule of dynamics/core/plastic_flow.h after every committed step, so a
 // push leaves a dent. The fixed nodes and the boundary normals keep the initial rest shape.
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -44,7 +54,8 @@
 
 namespace dnurbs {
 
-/// Coefficients of Romero 2005, eq. 8 (constants: the tool's isotropic materials).
+/// Coefficients of Romero 2005, eq. 8 (uniform over the grid: the tool's isotropic materials;
+/// PdeSurface::set_material changes them in time).
 struct PdeSurfaceMaterial {
   double b = 1.0;             ///< d4/du4 coefficient (>= 0)
   double c = 2.0;             ///< d4/du2dv2 coefficient (>= 0; b = d = 1, c = 2 is the biharmonic)
@@ -104,6 +115,16 @@ class PdeSurface : public Model {
   std::vector<int> nodes_within(const Eigen::Vector3d& centre, double radius) const;
   /// The constant force t of the boundary tangents (3 per active node).
   const Eigen::VectorXd& tangent_force() const { return tangent_force_; }
+  const PdeSurfaceMaterial& material() const { return material_; }
+  /// Changes the material (checked as the constructor does, Error naming the value; the model
+  /// is unchanged then): M, D, K and t recombined from the unit matrices (header comment), the
+  /// state and the rest shape untouched. A System holding a copy learns of it through
+  /// System::set_material_parameters only.
+  void set_material(const PdeSurfaceMaterial& material);
+  /// pde_material_parameters(material()).
+  Eigen::VectorXd material_parameters() const override;
+  /// set_material(pde_material_from_parameters(values)); true unless only tangents changed.
+  bool set_material_parameters(ConstVectorRef values) override;
 
   int coordinate_count() const override { return 3 * static_cast<int>(active_.size()); }
   Eigen::VectorXd initial_coordinates() const override;
@@ -134,10 +155,10 @@ class PdeSurface : public Model {
   void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
 
  private:
-  // Construction steps: the active nodes of the deformation regions, then M, D, K and the
-  // constant force of the boundary tangents.
+  // Construction steps: the active nodes of the deformation regions, then the unit stiffness
+  // matrices and tangent forces (set_material combines them into K and t).
   void choose_active_nodes(const std::vector<DeformationRegion>& regions);
-  void build_matrices();
+  void build_unit_matrices();
 
   Grid grid_;
   PdeSurfaceMaterial material_;
@@ -147,9 +168,28 @@ class PdeSurface : public Model {
   Eigen::VectorXd initial_coordinates_;  ///< the active nodes at the initial rest shape
   Eigen::VectorXd rest_coordinates_;     ///< r0 of the active nodes (plastic flow moves them)
   std::optional<PlasticFlow> plastic_flow_;
+  // Built once with the active nodes (they depend on the grid, the rest shape and the regions
+  // only): K_b, K_c, K_d (active nodes by active nodes) of b = c = d = 1, and the tangent forces
+  // of b = d = 1 and a unit tangent at u0, u1, v0, v1 (3 per active node).
+  std::array<SparseMatrix, 3> unit_stiffness_;
+  std::array<Eigen::VectorXd, 4> unit_tangent_force_;
+  // Rebuilt by set_material: t and M, D, K.
   Eigen::VectorXd tangent_force_;
   ModelMatrices matrices_;
 };
+
+/// The number of PDE surface material parameters, and the material as the Model contract's
+/// parameter vector [b, c, d, density rho, damping gamma, su0, su1, sv0, sv1] and back (Error
+/// naming the size when it is not 9; the values are checked by set_material).
+inline constexpr int kPdeMaterialParameterCount = 9;
+Eigen::VectorXd pde_material_parameters(const PdeSurfaceMaterial& material);
+PdeSurfaceMaterial pde_material_from_parameters(ConstVectorRef values);
+
+/// The nodes whose positions (3 per node in `positions`, node a at 3 a) are within `radius` of
+/// `centre`, ascending. Throws Error naming the radius if it is negative or not finite, or the
+/// centre if it is not finite.
+std::vector<int> nodes_within(ConstVectorRef positions, const Eigen::Vector3d& centre,
+                              double radius);
 
 /// Sub-steps to an output frame rate (Romero 2005, section 4.3: the solver runs until the frame's
 /// 1/frame_rate has elapsed): ceil(1 / (frame_rate max_dt)) equal steps of at most max_dt.

@@ -184,6 +184,28 @@ PdeSurface make_pde(const Grid& grid, const py::object& rest, double b, double c
   return PdeSurface(grid, node_positions(rest, "rest", grid.node_count()), material, spec);
 }
 
+void set_pde_material(PdeSurface& self, const py::object& b, const py::object& c,
+                      const py::object& d, const py::object& mass_density,
+                      const py::object& damping_density, const py::object& tangents) {
+  PdeSurfaceMaterial material = self.material();
+  for (const auto& [value, field] :
+       {std::pair{&b, &material.b}, std::pair{&c, &material.c}, std::pair{&d, &material.d},
+        std::pair{&mass_density, &material.mass_density},
+        std::pair{&damping_density, &material.damping_density}}) {
+    if (!value->is_none()) {
+      *field = value->cast<double>();
+    }
+  }
+  if (!tangents.is_none()) {
+    const Eigen::VectorXd slopes = vector_from_array(tangents, "tangents", 4);
+    material.tangent_u0 = slopes(0);
+    material.tangent_u1 = slopes(1);
+    material.tangent_v0 = slopes(2);
+    material.tangent_v1 = slopes(3);
+  }
+  self.set_material(material);
+}
+
 void bind_pde_and_snake(py::module_& module) {
   py::class_<PdeSurface, Model> pde_class(
       module, "PdeSurface",
@@ -229,7 +251,14 @@ void bind_pde_and_snake(py::module_& module) {
       .def_property_readonly(
           "tangent_force",
           [](const PdeSurface& self) { return array_from_vector(self.tangent_force()); },
-          "The constant force t of the boundary tangents, (3 #active,).");
+          "The constant force t of the boundary tangents, (3 #active,).")
+      .def("set_material", &set_pde_material, py::arg("b") = py::none(), py::arg("c") = py::none(),
+           py::arg("d") = py::none(), py::arg("mass_density") = py::none(),
+           py::arg("damping_density") = py::none(), py::arg("tangents") = py::none(),
+           "Changes the coefficients given (None keeps one; tangents (4,): u0, u1, v0, v1), "
+           "checked as the constructor does: M, D, K and tangent_force are recombined, the rest "
+           "shape stays. A System holding a copy changes through "
+           "System.set_material_parameters.");
   py::class_<Snake, Model>(
       module, "Snake",
       "A snake (Terzopoulos, Deformable Models, eqs. 1.2-1.8): N nodes on s in [0, 1], q = "

@@ -106,6 +106,11 @@ void bind_model_contract(py::class_<Model>& model) {
                              "1 for curves, 2 for surfaces.")
       .def_property_readonly("matrices_are_constant", &Model::matrices_are_constant,
                              "True if M, D, K do not depend on q.")
+      .def_property_readonly(
+          "material_parameters",
+          [](const Model& self) { return array_from_vector(self.material_parameters()); },
+          "The material a run may change (System.set_material_parameters), in the model's "
+          "order (PdeSurface: b, c, d, density, damping, su0, su1, sv0, sv1); empty when fixed.")
       .def(
           "initial_coordinates",
           [](const Model& self) { return array_from_vector(self.initial_coordinates()); },

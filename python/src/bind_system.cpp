@@ -92,6 +92,15 @@ void bind_system_state(py::class_<System>& system) {
            "(its velocity zero).")
       .def("fix_border", &System::fix_border, py::arg("model"),
            "Fixes every point on the border of the system's model `model`.")
+      .def(
+          "set_material_parameters",
+          [](System& self, int model, const py::object& values) {
+            return self.set_material_parameters(model, vector_from_array(values, "values", -1));
+          },
+          py::arg("model"), py::arg("values"),
+          "Sets the material of the system's model `model` between steps (its "
+          "material_parameters order): the state stays, integrators refactor. False, changing "
+          "nothing, when the values are the current ones.")
       .def_property_readonly("model_count", &System::model_count, "Number of models.")
       .def(
           "model", [](const System& self, int i) { return self.model(i).clone(); }, py::arg("i"),

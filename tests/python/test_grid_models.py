@@ -105,6 +105,61 @@ def test_pde_surface_energy_is_its_quadratic_form():
         dnurbs.PdeSurface(grid, rest, regions=[([0.5, 0.5, 0], -1.0)])
 
 
+def test_pde_surface_material_changes_in_place_and_in_a_running_system():
+    grid = dnurbs.Grid(9, 9, 0.125)
+    rest = dnurbs.flat_grid_positions(grid)
+    surface = dnurbs.PdeSurface(grid, rest)
+    # b, c, d, density, damping, su0, su1, sv0, sv1 (pde_surface.h, pde_material_parameters)
+    np.testing.assert_array_equal(surface.material_parameters, [1, 2, 1, 1, 0, 0, 0, 0, 0])
+    unit = surface.matrices(dense=True)["stiffness"]
+    surface.set_material(b=3, c=6, d=3, damping_density=2)
+    np.testing.assert_array_equal(surface.material_parameters, [3, 6, 3, 1, 2, 0, 0, 0, 0])
+    # K is linear in (b, c, d): three times the unit one, to the round-off of the sums
+    np.testing.assert_allclose(surface.matrices(dense=True)["stiffness"], 3 * unit,
+                               rtol=0, atol=1e-13 * np.abs(unit).max())
+    with pytest.raises(ValueError, match="-1"):
+        surface.set_material(mass_density=-1)
+    np.testing.assert_array_equal(surface.material_parameters, [3, 6, 3, 1, 2, 0, 0, 0, 0])
+
+    # A run whose material jumps after 20 steps equals one restarted there with a new surface
+    def run(first_steps):
+        system = dnurbs.System()
+        system.add_model(dnurbs.PdeSurface(grid, rest, damping_density=1.0))
+        system.add_point_force(0, [0.5, 0.5], [0, 0, 1])
+        integrator = dnurbs.Integrator("newmark")
+        for _ in range(first_steps):
+            integrator.step(system, 0.01)
+        return system, integrator
+
+    jumped, integrator = run(20)
+    assert jumped.set_material_parameters(0, [4, 8, 4, 0.5, 3, 0, 0, 0, 0])
+    assert not jumped.set_material_parameters(0, [4, 8, 4, 0.5, 3, 0, 0, 0, 0])
+    for _ in range(20):
+        integrator.step(jumped, 0.01)
+    np.testing.assert_array_equal(jumped.model(0).material_parameters, [4, 8, 4, 0.5, 3, 0, 0, 0, 0])
+    first, _ = run(20)
+    restarted = dnurbs.System()
+    restarted.add_model(dnurbs.PdeSurface(grid, rest, b=4, c=8, d=4, mass_density=0.5,
+                                          damping_density=3))
+    restarted.add_point_force(0, [0.5, 0.5], [0, 0, 1])
+    restarted.set_coordinates(0, first.coordinates)
+    restarted.set_velocities(0, first.velocities)
+    restarted.set_time(first.time)
+    integrator = dnurbs.Integrator("newmark")
+    for _ in range(20):
+        integrator.step(restarted, 0.01)
+    moved = restarted.coordinates - rest_of(restarted)
+    assert np.linalg.norm(moved) > 1e-4
+    np.testing.assert_allclose(jumped.coordinates, restarted.coordinates, rtol=0,
+                               atol=1e-12 * np.linalg.norm(moved))
+    with pytest.raises(ValueError, match="nan"):
+        jumped.set_material_parameters(0, [1, 2, np.nan, 1, 0, 0, 0, 0, 0])
+
+
+def rest_of(system):
+    return system.model(0).initial_coordinates()
+
+
 def test_snake_stiffness_is_translation_free():
     angles = np.linspace(0, 2 * np.pi, 8, endpoint=False)
     nodes = np.stack([np.cos(angles), np.sin(angles), 0 * angles], axis=1)

@@ -163,6 +163,13 @@ def f(s): s["models"].append({"type": "terzopoulos_surface", "grid": {"nodes": [
 case("grid_too_small", f, "models[2].grid.nodes[0]: expected an integer in 3..4096")
 def f(s): s["models"].append({"type": "pde_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "regions": [{"centre": [0, 0, 0], "radius": 0}]})
 case("zero_region_radius", f, "models[2].regions[0].radius: expected a number > 0")
+# PDE surface controls (Romero 2005, 5.2.1.2): keyed material, start frame, resets
+def f(s): s["models"].append({"type": "pde_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "material": {"density": {"times": [0, 1], "values": [1, -2]}}})
+case("pde_negative_keyed_density", f, "models[2].material.density.values[1]: expected a number > 0, got -2")
+def f(s): s["models"].append({"type": "pde_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "material": {"density": {"times": [0, 0.03, 0.06, 0.1], "values": [2, 0.1, 0.1, 2], "interpolation": "cubic"}}})
+case("pde_keyed_density_dips_below_zero", f, "models[2].material.density: at frame 4, the keyframes give -0.119741 at t = 0.04, expected a number > 0")
+def f(s): s["models"].append({"type": "pde_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "reset": [3, 7.5]})
+case("pde_reset_not_an_integer", f, "models[2].reset[1]: expected an integer in 1..100000000, got number 7.5")
 def f(s): s["models"].append({"type": "terzopoulos_surface", "grid": {"nodes": [5, 5], "spacing": 0.1}, "material": {"eta": [[1, 2], [0, 1]]}})
 case("asymmetric_eta", f, "models[2]:")
 def f(s): s["models"][0]["material"]["a10"] = [1]
@@ -237,11 +244,13 @@ case("triangular_quadrature_points", f, "models[2].quadrature_points: unknown ke
 
 import sys
 out = os.path.dirname(os.path.abspath(__file__))
-# Hand-written cases (design_*.json) are kept with their lines of expected_messages.tsv
+# Hand-written cases (design_*.json, deformation_field_*.json: other base scenes) are kept with
+# their lines of expected_messages.tsv
+handwritten_prefixes = ("design_", "deformation_field_")
 handwritten = [line.rstrip("\n") for line in open(os.path.join(out, "expected_messages.tsv"))
-               if line.startswith("design_")]
+               if line.startswith(handwritten_prefixes)]
 for f in os.listdir(out):
-    if (f.endswith('.json') and not f.startswith("design_")) or f.endswith('.tsv'):
+    if (f.endswith('.json') and not f.startswith(handwritten_prefixes)) or f.endswith('.tsv'):
         os.remove(os.path.join(out, f))
 lines = []
 for name, mutate, expected, raw in cases:

@@ -63,8 +63,9 @@ TEST(PdeForceRegion, PushesEachActiveNodeWithinTheForceRadius) {
   const PdeSurface surface(square_grid(), flat_rest());
   System system(surface);
   const Eigen::Vector3d centre(0.5, 0.5, 0.0);
-  system.add_force(0, pde_force_region([](double) { return Eigen::Vector3d(0.5, 0.5, 0.0); }, 0.1,
-                                       [](double t) { return Eigen::Vector3d(0, 0, 300.0 * t); }));
+  system.add_force(0, pde_force_region(
+                          surface, [](double) { return Eigen::Vector3d(0.5, 0.5, 0.0); }, 0.1,
+                          [](double t) { return Eigen::Vector3d(0, 0, 300.0 * t); }));
   Eigen::VectorXd f = Eigen::VectorXd::Zero(surface.coordinate_count());
   system.add_applied_forces(0.5, system.coordinates(), system.velocities(), f);
   const std::vector<int> nodes = surface.nodes_within(centre, 0.1);
@@ -73,9 +74,34 @@ TEST(PdeForceRegion, PushesEachActiveNodeWithinTheForceRadius) {
     EXPECT_EQ(f(3 * slot + 2), 150.0);
   }
   EXPECT_EQ(f.sum(), 150.0 * 21);
-  EXPECT_THROW(pde_force_region([](double) { return Eigen::Vector3d::Zero(); }, -1.0,
-                                [](double) { return Eigen::Vector3d::Zero(); }),
+  EXPECT_THROW(pde_force_region(
+                   surface, [](double) { return Eigen::Vector3d::Zero(); }, -1.0,
+                   [](double) { return Eigen::Vector3d::Zero(); }),
                Error);
+}
+
+TEST(PdeForceRegion, ActsOnTheNodesOfTheSurfaceItWasFoundOn) {
+  // The rest positions are read from the surface when the force is made: a force made on a
+  // region's surface acts on that surface's active nodes, and refuses a model of another size
+  DeformationRegion box;
+  box.box = Eigen::AlignedBox3d(Eigen::Vector3d(0.25, 0.25, -1), Eigen::Vector3d(0.75, 0.75, 1));
+  const PdeSurface region(square_grid(), flat_rest(), {}, {box});
+  const Force push = pde_force_region(
+      region, [](double) { return Eigen::Vector3d(0.5, 0.5, 0.0); }, 0.1,
+      [](double) { return Eigen::Vector3d(0, 0, 1); });
+  const Eigen::VectorXd rest = region.initial_coordinates();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(region.velocity_count());
+  push(region, 0.0, rest, Eigen::VectorXd::Zero(rest.size()), f);
+  const std::vector<int> nodes = region.nodes_within(Eigen::Vector3d(0.5, 0.5, 0.0), 0.1);
+  ASSERT_EQ(nodes.size(), 21U);
+  EXPECT_EQ(f.sum(), 21.0);
+  for (const int slot : nodes) {
+    EXPECT_EQ(f(region.control_point_offset(slot) + 2), 1.0);
+  }
+  const PdeSurface whole(square_grid(), flat_rest());
+  const Eigen::VectorXd whole_rest = whole.initial_coordinates();
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(whole_rest.size());
+  EXPECT_THROW(push(whole, 0.0, whole_rest, Eigen::VectorXd::Zero(whole_rest.size()), g), Error);
 }
 
 // A force of 1 per node within 0.08 of a centre that moves from (0.3, 0.5) to (0.7, 0.5) in one
@@ -96,8 +122,8 @@ constexpr int kSteps = 100;
 // The z velocity of grid node `node` after each step (0 while it is fixed).
 std::vector<double> node_velocities(const PdeSurface& surface, int node) {
   System system(surface);
-  system.add_force(
-      0, pde_force_region(moving_centre, 0.08, [](double) { return Eigen::Vector3d(0, 0, 1); }));
+  system.add_force(0, pde_force_region(surface, moving_centre, 0.08,
+                                       [](double) { return Eigen::Vector3d(0, 0, 1); }));
   Integrator integrator(IntegratorSettings{IntegratorScheme::kImplicitEuler});
   std::vector<double> v;
   for (int s = 0; s < kSteps; ++s) {
@@ -128,8 +154,8 @@ std::vector<double> rebuilt_region_velocities(int node, double radius) {
     }
     System system(surface);
     system.set_state(q, qd, t);
-    system.add_force(
-        0, pde_force_region(moving_centre, 0.08, [](double) { return Eigen::Vector3d(0, 0, 1); }));
+    system.add_force(0, pde_force_region(surface, moving_centre, 0.08,
+                                         [](double) { return Eigen::Vector3d(0, 0, 1); }));
     Integrator integrator(IntegratorSettings{IntegratorScheme::kImplicitEuler});
     integrator.step(system, kDt);
     positions = rest;

@@ -1,6 +1,7 @@
 #include "dnurbs/dynamics/grid/pde_surface.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -204,6 +205,157 @@ TEST(PdeSurface, BadInputNamesTheValue) {
   Integrator integrator;
   EXPECT_THROW(advance_frame(integrator, system, 0.0), Error);
   EXPECT_THROW(advance_frame(integrator, system, 0.01, -24.0), Error);
+}
+
+// Keyable material (Romero 2005, section 5.2.1.2): a 13 by 13 grid (h = 1/12) pushed by 1 per
+// node within 0.2 of its centre, stepped by `scheme` in steps of 1/200.
+struct MaterialRun {
+  explicit MaterialRun(const PdeSurface& surface, IntegratorScheme scheme)
+      : system(surface), integrator(IntegratorSettings{scheme}) {
+    system.add_force(0, control_point_force(surface.nodes_within(Eigen::Vector3d(0.5, 0.5, 0), 0.2),
+                                            [](double) { return Eigen::Vector3d(0, 0, 1); }));
+  }
+  void steps(int count) {
+    for (int s = 0; s < count; ++s) {
+      integrator.step(system, 1.0 / 200.0);
+    }
+  }
+  System system;
+  Integrator integrator;
+};
+
+Grid small_grid() {
+  return Grid(13, 13, 1.0 / 12.0);
+}
+
+PdeSurface small_surface(const PdeSurfaceMaterial& material) {
+  return PdeSurface(small_grid(), flat_grid_positions(small_grid(), Eigen::Vector3d::Zero()),
+                    material);
+}
+
+// Every coefficient changes: stiffer along u, softer along v, lighter, damped, tangents set.
+PdeSurfaceMaterial jumped_material() {
+  PdeSurfaceMaterial m;
+  m.b = 4.0;
+  m.c = 1.0;
+  m.d = 0.5;
+  m.mass_density = 0.5;
+  m.damping_density = 3.0;
+  m.tangent_u0 = 0.3;
+  m.tangent_v1 = -0.2;
+  return m;
+}
+
+TEST(PdeSurfaceMaterial, JumpEqualsARestartWithTheNewMaterial) {
+  // A run whose material jumps after 40 steps (System::set_material_parameters) against one that
+  // stops there and continues as a new System of a new surface with the new material, from the
+  // same positions, velocities and time. A factorization kept from before the jump would step
+  // the old material on; the two runs must instead agree to round-off.
+  for (const IntegratorScheme scheme :
+       {IntegratorScheme::kCentral, IntegratorScheme::kImplicitEuler, IntegratorScheme::kNewmark}) {
+    SCOPED_TRACE(std::string(to_string(scheme)));
+    const PdeSurface before = small_surface(PdeSurfaceMaterial{});
+    MaterialRun jumped(before, scheme);
+    jumped.steps(40);
+    ASSERT_TRUE(
+        jumped.system.set_material_parameters(0, pde_material_parameters(jumped_material())));
+    jumped.steps(40);
+    EXPECT_EQ(jumped.integrator.factorization_count(), 2);  // once per material
+
+    MaterialRun first(before, scheme);
+    first.steps(40);
+    MaterialRun restarted(small_surface(jumped_material()), scheme);
+    restarted.system.set_state(first.system.coordinates(), first.system.velocities(),
+                               first.system.time());
+    restarted.steps(40);
+    MaterialRun unchanged(before, scheme);
+    unchanged.steps(80);
+
+    const Eigen::VectorXd rest = before.initial_coordinates();
+    const Eigen::VectorXd q = jumped.system.coordinates() - rest;
+    const Eigen::VectorXd q_restarted = restarted.system.coordinates() - rest;
+    ASSERT_GT(q_restarted.norm(), 1e-3);
+    // The same matrices (set_material and the constructor combine the same unit matrices) and
+    // the same state: round-off only
+    EXPECT_LE((q - q_restarted).norm(), 1e-12 * q_restarted.norm());
+    EXPECT_LE((jumped.system.velocities() - restarted.system.velocities()).norm(),
+              1e-12 * restarted.system.velocities().norm());
+    // ... and the jump matters: the old material would be far off
+    EXPECT_GT((unchanged.system.coordinates() - rest - q_restarted).norm(),
+              0.1 * q_restarted.norm());
+  }
+}
+
+TEST(PdeSurfaceMaterial, TangentsAloneKeepTheFactorization) {
+  // Keyed tangents change the force t, not M, D or K: the run keeps its factorization and still
+  // equals a restart with the new tangents
+  PdeSurfaceMaterial tangents;
+  tangents.tangent_u0 = 0.5;
+  tangents.tangent_v1 = -0.25;
+  const PdeSurface before = small_surface(PdeSurfaceMaterial{});
+  MaterialRun jumped(before, IntegratorScheme::kNewmark);
+  jumped.steps(40);
+  const std::uint64_t revision = jumped.system.revision();
+  ASSERT_TRUE(jumped.system.set_material_parameters(0, pde_material_parameters(tangents)));
+  EXPECT_EQ(jumped.system.revision(), revision);
+  jumped.steps(40);
+  EXPECT_EQ(jumped.integrator.factorization_count(), 1);
+  MaterialRun first(before, IntegratorScheme::kNewmark);
+  first.steps(40);
+  MaterialRun restarted(small_surface(tangents), IntegratorScheme::kNewmark);
+  restarted.system.set_state(first.system.coordinates(), first.system.velocities(),
+                             first.system.time());
+  restarted.steps(40);
+  const Eigen::VectorXd q = restarted.system.coordinates() - before.initial_coordinates();
+  EXPECT_LE((jumped.system.coordinates() - restarted.system.coordinates()).norm(),
+            1e-12 * q.norm());
+}
+
+TEST(PdeSurfaceMaterial, SetMaterialGivesTheFreshSurfaceAndRefusesBadValues) {
+  PdeSurface surface = small_surface(PdeSurfaceMaterial{});
+  surface.set_material(jumped_material());
+  const PdeSurface fresh = small_surface(jumped_material());
+  const auto same = [](const SparseMatrix& a, const SparseMatrix& b) {
+    return a.nonZeros() == b.nonZeros() && SparseMatrix(a - b).norm() == 0.0;
+  };
+  EXPECT_TRUE(same(surface.constant_matrices()->stiffness, fresh.constant_matrices()->stiffness));
+  EXPECT_TRUE(same(surface.constant_matrices()->mass, fresh.constant_matrices()->mass));
+  EXPECT_TRUE(same(surface.constant_matrices()->damping, fresh.constant_matrices()->damping));
+  EXPECT_EQ(surface.tangent_force(), fresh.tangent_force());
+  EXPECT_EQ(surface.material_parameters(), pde_material_parameters(jumped_material()));
+  // K is linear in (b, c, d): b = c = d = 0 leaves no stiffness, and the tangents no force
+  PdeSurfaceMaterial loose = jumped_material();
+  loose.b = loose.c = loose.d = 0.0;
+  surface.set_material(loose);
+  EXPECT_EQ(surface.constant_matrices()->stiffness.nonZeros(), 0);
+  EXPECT_EQ(surface.tangent_force().norm(), 0.0);
+
+  // A bad value is named and changes nothing
+  PdeSurfaceMaterial bad = jumped_material();
+  bad.mass_density = -0.25;
+  try {
+    surface.set_material(bad);
+    ADD_FAILURE() << "a negative density was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("-0.25"), std::string::npos);
+  }
+  EXPECT_EQ(surface.material_parameters(), pde_material_parameters(loose));
+  EXPECT_THROW(surface.set_material_parameters(Eigen::VectorXd::Ones(8)), Error);
+
+  // Through a System: equal values change nothing (no refactorization), bad ones throw and
+  // leave the model as it was; an index out of range is refused
+  MaterialRun run(small_surface(PdeSurfaceMaterial{}), IntegratorScheme::kImplicitEuler);
+  run.steps(2);
+  const std::uint64_t revision = run.system.revision();
+  EXPECT_FALSE(run.system.set_material_parameters(0, pde_material_parameters({})));
+  run.steps(2);
+  EXPECT_EQ(run.system.revision(), revision);
+  EXPECT_EQ(run.integrator.factorization_count(), 1);
+  Eigen::VectorXd nan = pde_material_parameters({});
+  nan(2) = std::nan("");
+  EXPECT_THROW(run.system.set_material_parameters(0, nan), Error);
+  EXPECT_EQ(run.system.revision(), revision);
+  EXPECT_THROW(run.system.set_material_parameters(1, nan), Error);
 }
 
 }  // namespace

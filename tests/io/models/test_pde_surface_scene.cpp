@@ -5,6 +5,7 @@
 
 #include "dnurbs/io/models/pde_surface_scene.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -100,6 +101,60 @@ TEST(PdeSurfaceScene, BadRegionsNameTheirKeys) {
   }
 }
 
+// The plate of scene_with without regions, with the given material and extra model keys.
+std::string controls_scene(const std::string& material, const std::string& keys) {
+  return R"({"models": [{"name": "plate", "type": "pde_surface",
+    "grid": {"nodes": [9, 9], "spacing": 0.125}, "material": {)" +
+         material + "}" + keys + R"(}], "integrator": {"scheme": "implicit-euler", "dt": 0.01},
+    "run": {"steps": 1}})";
+}
+
+TEST(PdeSurfaceScene, KeyedMaterialStartFrameAndResetReadAndWriteBack) {
+  const Scene scene = parse_scene_json(controls_scene(
+      R"("damping": {"times": [0, 1], "values": [0, 2]}, "su0": {"times": [0, 1], "values": [0, 3]},
+         "b": 2)",
+      R"(, "start_frame": 2, "reset": [4, 9])"));
+  const auto& spec = dynamic_cast<const ScenePdeSurface&>(*scene.models[0].spec);
+  EXPECT_EQ(spec.start_frame, 2);
+  EXPECT_EQ(spec.reset_frames, (std::vector<int>{4, 9}));
+  const PdeSurfaceMaterial half = spec.material_at(0.5);
+  EXPECT_NEAR(half.damping_density, 1.0, 1e-12);  // two keyframes: linear
+  EXPECT_NEAR(half.tangent_u0, 1.5, 1e-12);
+  EXPECT_EQ(half.b, 2.0);
+  EXPECT_EQ(half.c, 2.0);  // the default
+  const SceneModelControls controls = spec.controls();
+  EXPECT_EQ(controls.start_frame, 2);
+  ASSERT_TRUE(controls.material);
+  EXPECT_EQ(controls.material(0.5), pde_material_parameters(half));
+  EXPECT_TRUE(parse_scene_json(scene_to_json(scene)) == scene);
+  // One reset frame as a number; constant materials give no material control
+  const Scene one = parse_scene_json(controls_scene(R"("b": 2)", R"(, "reset": 3)"));
+  const SceneModelControls constant = one.models[0].spec->controls();
+  EXPECT_EQ(constant.reset_frames, (std::vector<int>{3}));
+  EXPECT_FALSE(constant.material);
+}
+
+TEST(PdeSurfaceScene, BadControlsNameTheirKeys) {
+  EXPECT_THAT(parse_error(controls_scene(R"("density": {"times": [0, 1], "values": [1, -1]})", "")),
+              HasSubstr("models[0].material.density.values[1]: expected a number > 0, got -1"));
+  EXPECT_THAT(parse_error(controls_scene(R"("damping": -1)", "")),
+              HasSubstr("models[0].material.damping: expected a number >= 0, got -1"));
+  EXPECT_THAT(parse_error(controls_scene(R"("b": "stiff")", "")),
+              HasSubstr("models[0].material.b: expected a number or {\"times\""));
+  EXPECT_THAT(parse_error(controls_scene(R"("su1": {"times": [0, 1], "values": [0]})", "")),
+              HasSubstr("models[0].material.su1.values: expected 2 values"));
+  EXPECT_THAT(
+      parse_error(controls_scene("", R"(, "start_frame": -1)")),
+      HasSubstr("models[0].start_frame: expected an integer in 0..100000000, got number -1"));
+  EXPECT_THAT(parse_error(controls_scene("", R"(, "reset": 2.5)")),
+              HasSubstr("models[0].reset: expected an integer in 1..100000000, got number 2.5"));
+  EXPECT_THAT(parse_error(controls_scene("", R"(, "reset": [0])")),
+              HasSubstr("models[0].reset[0]: expected an integer in 1..100000000"));
+  EXPECT_THAT(parse_error(controls_scene("", R"(, "reset": [5, 3])")),
+              HasSubstr("models[0].reset[1]: expected strictly increasing reset frames, got 3 "
+                        "after 5"));
+}
+
 std::filesystem::path examples_directory() {
   return std::filesystem::path(DNURBS_TEST_DATA_DIR) / ".." / ".." / "examples" / "scenes";
 }
@@ -159,6 +214,23 @@ TEST(PdeSurfaceExamples, MovingForceRaisesMoreWithTheLargerDeformationRadius) {
   EXPECT_NEAR(heights[0].back(), 10.1757, 1e-4);
   EXPECT_NEAR(heights[1].back(), 14.7407, 1e-4);
   EXPECT_NEAR(heights[1].back() / heights[0].back(), 1.4486, 1e-4);
+}
+
+TEST(PdeSurfaceExamples, KeyedSceneHoldsOvershootsSettlesAndResets) {
+  // Romero 2005, 5.2.1.2: held until frame 4; damping keyed from 0.05 (frame 4) to 2 (frame 14):
+  // the centre overshoots to 2.74 and settles at the equilibrium of b = 20, 1.6530 (a long run
+  // of the static material); b keyed from 20 to 60 (frames 20-26): it sinks towards the
+  // equilibrium of b = 60, 0.96005; reset at frame 30, it settles there again (measured)
+  const auto centre = probe_heights("pde_surface_keyed")[0];  // after frames 1..40
+  ASSERT_EQ(centre.size(), 40U);
+  for (int frame = 1; frame <= 4; ++frame) {
+    EXPECT_EQ(centre[static_cast<size_t>(frame - 1)], 0.0) << "frame " << frame;
+  }
+  EXPECT_NEAR(*std::max_element(centre.begin(), centre.end()), 2.7404, 1e-4);
+  EXPECT_NEAR(centre[19], 1.6528, 1e-4);  // frame 20
+  EXPECT_NEAR(centre[28], 0.9545, 1e-4);  // frame 29
+  EXPECT_EQ(centre[29], 0.0);             // frame 30: the reset
+  EXPECT_NEAR(centre[39], 0.96006, 1e-5);
 }
 
 }  // namespace
