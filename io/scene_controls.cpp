@@ -18,8 +18,8 @@ SceneControls::SceneControls(const Scene& scene, const System& system)
       continue;
     }
     if (controls.material) {
-      // Every value the run will take, now, naming the key (a spline between keyframes in range
-      // can leave the range)
+      // Every value the run will take, now, naming the key (a cubic spline through keyframes in
+      // range can leave the range between them)
       for (int frame = 0; frame <= scene.step_count() / steps_per_frame_; ++frame) {
         try {
           controls.material(frame_time(frame));

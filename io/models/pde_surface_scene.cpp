@@ -229,8 +229,9 @@ SceneModelControls ScenePdeSurface::controls() const {
       const double value = keys[k](time);
       const MaterialKey& key = kMaterialKeys[k];
       if (!in_range(key, value)) {
-        // A natural cubic spline through values in range can leave it between keyframes (six
-        // digits: the time is a sum of steps, 0.040000000000000001 in full)
+        // A cubic spline ("interpolation": "cubic") through values in range can leave it
+        // between keyframes (monotone and linear ones cannot); six digits: the time is a
+        // product of steps, 0.040000000000000001 in full
         std::ostringstream text;
         text << "the keyframes give " << value << " at t = " << time << ", expected a number "
              << (key.strict ? "> " : ">= ") << *key.minimum

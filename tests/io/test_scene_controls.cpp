@@ -3,8 +3,8 @@
 // frame's start through the frame, a keyed stiffness ends at the closed-form equilibrium of the
 // final stiffness within the bound of the implicit-Euler free motion, a start frame holds the
 // initial state and then runs the same steps as a run from time 0, a reset returns to the initial
-// state and continues as a fresh run, a checkpoint resumes a keyed run, and a spline that leaves a
-// key's range is refused naming the key.
+// state and continues as a fresh run, a checkpoint resumes a keyed run, and a cubic spline that
+// leaves a key's range is refused naming the key (the monotone default stays within it).
 
 #include "dnurbs/io/scene_controls.h"
 
