@@ -17,11 +17,19 @@ inline double median(std::vector<double> values) {
   return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
-/// The median step time of each setup (anything with step()): rounds of one step each until
-/// at least `min_repeats` rounds and `budget` seconds per setup, at most `max_repeats` rounds.
+/// The median and the mean step time of each setup.
+struct StepTimes {
+  std::vector<double> median;
+  std::vector<double> mean;
+};
+
+/// The step times of each setup (anything with step()): rounds of one step each until at least
+/// `min_repeats` rounds and `budget` seconds per setup, at most `max_repeats` rounds. The median
+/// resists the shared machine's slow phases; the mean counts the occasional expensive step of a
+/// setup whose steps differ (a kept factor replaced now and then), which the median hides.
 template <typename Setup>
-std::vector<double> interleaved_medians(std::vector<std::unique_ptr<Setup>>& setups, double budget,
-                                        int min_repeats, int max_repeats) {
+StepTimes interleaved_times(std::vector<std::unique_ptr<Setup>>& setups, double budget,
+                            int min_repeats, int max_repeats) {
   std::vector<std::vector<double>> samples(setups.size());
   double total = 0.0;
   for (int repeat = 0; repeat < max_repeats; ++repeat) {
@@ -37,12 +45,23 @@ std::vector<double> interleaved_medians(std::vector<std::unique_ptr<Setup>>& set
       total += seconds;
     }
   }
-  std::vector<double> medians;
-  medians.reserve(samples.size());
+  StepTimes times;
   for (const auto& s : samples) {
-    medians.push_back(median(s));
+    times.median.push_back(median(s));
+    double sum = 0.0;
+    for (const double value : s) {
+      sum += value;
+    }
+    times.mean.push_back(sum / static_cast<double>(s.size()));
   }
-  return medians;
+  return times;
+}
+
+/// The median step time of each setup (interleaved_times).
+template <typename Setup>
+std::vector<double> interleaved_medians(std::vector<std::unique_ptr<Setup>>& setups, double budget,
+                                        int min_repeats, int max_repeats) {
+  return interleaved_times(setups, budget, min_repeats, max_repeats).median;
 }
 
 }  // namespace dnurbs::bench

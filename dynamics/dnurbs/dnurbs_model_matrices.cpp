@@ -300,51 +300,6 @@ void DNurbsModel::assemble_step(ConstVectorRef q, ConstVectorRef qd, bool inerti
   free_pass(q, inertial ? qd.data() : nullptr, matrices, force.data());
 }
 
-void DNurbsModel::add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVectorRef a,
-                                    bool inertial, VectorRef force) const {
-  if (mode_ == WeightMode::kFixed) {
-    Model::add_step_residual(q, qd, a, inertial, force);
-    return;
-  }
-  check_velocity(qd);
-  check_velocity(a);
-  if (force.size() != velocity_count()) {
-    throw make_error("force vector has ", force.size(), " entries, the model has ",
-                     velocity_count());
-  }
-  // M a + D qd = integral J_0^T (mu J_0 a + gamma J_0 qd) + m_w a_w at the Gauss points of
-  // assemble_step, with its forces
-  add_weight_anchor_force(q, force);
-  for (int i = 0; i < control_point_count_; ++i) {
-    force[4 * i + 3] -= weight_inertia_ * a[4 * i + 3];
-  }
-  for_each_quadrature_point(
-      control_net(q), stiffness_order(), true,
-      [&](int element, int point, double weight, const double* m, const PointBasis& basis,
-          const RationalJacobian& jacobian) {
-        Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
-        Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-        for (int b = 0; b < basis.active_count; ++b) {
-          const int offset = basis.node[static_cast<size_t>(b)] * 4;
-          acceleration += jacobian.rational(0, b) * a.segment<3>(offset) +
-                          jacobian.weight_column[0].col(b) * a[offset + 3];
-          velocity += jacobian.rational(0, b) * qd.segment<3>(offset) +
-                      jacobian.weight_column[0].col(b) * qd[offset + 3];
-        }
-        const Eigen::Vector3d h = weight * (m[0] * acceleration + m[1] * velocity);
-        for (int b = 0; b < basis.active_count; ++b) {
-          const int offset = basis.node[static_cast<size_t>(b)] * 4;
-          force.segment<3>(offset) -= jacobian.rational(0, b) * h;
-          force[offset + 3] -= jacobian.weight_column[0].col(b).dot(h);
-        }
-        if (inertial) {
-          subtract_inertial_force(weight, m, basis, jacobian, qd.data(), force.data());
-        }
-        subtract_elastic_force(weight, m, rest_at(element, point), basis, jacobian, force.data());
-      },
-      [](int /*element*/) {});
-}
-
 const double* DNurbsModel::rest_at(int element, int point) const {
   if (rest_derivatives_.empty()) {
     return nullptr;

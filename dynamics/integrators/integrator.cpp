@@ -61,68 +61,7 @@ bool automatic_newton_applies(const IntegratorSettings& settings, const System& 
   return false;
 }
 
-IntegratorScheme parse_integrator_scheme(std::string_view name) {
-  if (name == "central") {
-    return IntegratorScheme::kCentral;
-  }
-  if (name == "implicit-euler") {
-    return IntegratorScheme::kImplicitEuler;
-  }
-  if (name == "newmark") {
-    return IntegratorScheme::kNewmark;
-  }
-  throw make_error("unknown integrator '", std::string(name),
-                   "' (expected central, implicit-euler or newmark)");
-}
-
-std::string_view to_string(IntegratorScheme scheme) {
-  switch (scheme) {
-    case IntegratorScheme::kCentral:
-      return "central";
-    case IntegratorScheme::kImplicitEuler:
-      return "implicit-euler";
-    case IntegratorScheme::kNewmark:
-      return "newmark";
-  }
-  return "unknown";
-}
-
 // The blocks of A and the work vectors of a step, kept between steps.
-namespace {
-
-// The coefficients of one step of a scheme (integrator.h's header comment).
-struct StepCoefficients {
-  double position = 0.0;  // q_new = q_pred "+" position a
-  double velocity = 0.0;  // v_eq = v_pred + velocity a
-  double store = 0.0;     // v_new = v_store + store a
-  double force_time = 0.0;
-  double predictor_acceleration_q = 0.0;  // Newmark: q_pred gets (1/2 - beta) dt^2 a_old
-  double predictor_acceleration_v = 0.0;  // and v_pred (1 - gamma) dt a_old
-};
-
-StepCoefficients step_coefficients(const IntegratorSettings& settings, double t, double dt) {
-  StepCoefficients c;
-  c.position = dt * dt;
-  c.velocity = dt;
-  c.store = dt;
-  c.force_time = t + dt;
-  if (settings.scheme == IntegratorScheme::kNewmark) {
-    const double beta = settings.newmark_beta;
-    const double gamma = settings.newmark_gamma;
-    c.position = beta * dt * dt;
-    c.velocity = gamma * dt;
-    c.store = gamma * dt;
-    c.predictor_acceleration_q = (0.5 - beta) * dt * dt;
-    c.predictor_acceleration_v = (1.0 - gamma) * dt;
-  } else if (settings.scheme == IntegratorScheme::kCentral) {
-    c.velocity = 0.5 * dt;  // (q(t+dt) - q(t-dt)) / (2 dt) = v + dt a / 2
-    c.force_time = t;
-  }
-  return c;
-}
-
-}  // namespace
-
 struct Integrator::Workspace {
   StepBlocks blocks;
   StepCoefficients coefficients;
@@ -314,7 +253,8 @@ void Integrator::step(System& system, double dt) {
   const std::vector<int>& fixed = system.fixed_coordinates();
   const IntegratorScheme scheme = settings_.scheme;
   const double t = system.time();
-  w.coefficients = step_coefficients(settings_, t, dt);
+  w.coefficients =
+      step_coefficients(scheme, settings_.newmark_beta, settings_.newmark_gamma, t, dt);
   if (scheme != IntegratorScheme::kImplicitEuler) {
     refuse_massless_models(system, scheme);
   }
@@ -342,31 +282,29 @@ void Integrator::step(System& system, double dt) {
   // constant model under state-dependent forces steps as it did then.
   const bool warm_start =
       any_state_dependent && scheme == IntegratorScheme::kNewmark && system.accelerations_valid();
-  if (warm_start) {
-    w.a = system.accelerations();
-    for (const int index : fixed) {
-      w.a[index] = 0.0;
-    }
-  } else {
-    w.a.setZero(n);
-  }
-  w.q_iter = w.q_pred;
-  last_iterations_ = 0;
   int iterations = settings_.newton_iterations;
   double tolerance = settings_.newton_tolerance;
-  if (any_state_dependent && automatic_newton_applies(settings_, system)) {
+  const bool automatic = any_state_dependent && automatic_newton_applies(settings_, system);
+  if (automatic) {
     iterations = kAutomaticNewtonIterations;
     tolerance = kAutomaticNewtonTolerance;
   }
-  double previous_correction = -1.0;  // the first solve factors the state-dependent blocks
-  for (int k = 0; k <= iterations; ++k) {
-    const bool with_acceleration = k > 0 || warm_start;
-    solve_iteration(system, dt, with_acceleration, previous_correction);
-    last_iterations_ = k;
-    previous_correction = w.delta.norm();
-    if (with_acceleration && previous_correction <= tolerance * std::max(w.a.norm(), 1e-300)) {
-      break;
+  // The automatic Newton iterates to its tolerance, so it may start from the factors the last
+  // step ended with (IntegratorSettings::keep_factor_across_steps). Should that not converge
+  // within the cap, or a factorization at an iterate fail, the step is solved again from its
+  // predictor with the factor there, as without the setting.
+  if (automatic && settings_.keep_factor_across_steps) {
+    bool converged = false;
+    try {
+      converged = iterate(system, dt, warm_start, iterations, tolerance, FactorReuse::kAcrossSteps);
+    } catch (const Error&) {
+      converged = false;
     }
+    if (!converged) {
+      iterate(system, dt, warm_start, iterations, tolerance, FactorReuse::kNone);
+    }
+  } else {
+    iterate(system, dt, warm_start, iterations, tolerance, FactorReuse::kNone);
   }
 
   // New state: q = q_pred "+" c_q a, v = v_store + c_v a; projection; finiteness
@@ -386,6 +324,45 @@ void Integrator::step(System& system, double dt) {
                      "); the state is unchanged");
   }
   system.commit_step(w.q_new, w.v_new, w.a, t + dt);
+}
+
+bool Integrator::iterate(const System& system, double dt, bool warm_start, int iterations,
+                         double tolerance, FactorReuse first_reuse) {
+  Workspace& w = *work_;
+  if (warm_start) {
+    w.a = system.accelerations();
+    for (const int index : system.fixed_coordinates()) {
+      w.a[index] = 0.0;
+    }
+  } else {
+    w.a.setZero(system.velocity_count());
+  }
+  w.q_iter = w.q_pred;
+  last_iterations_ = 0;
+  double previous_correction = -1.0;
+  for (int k = 0; k <= iterations; ++k) {
+    const bool with_acceleration = k > 0 || warm_start;
+    const int factorizations = factorization_count_;
+    solve_iteration(system, dt, with_acceleration, previous_correction,
+                    k == 0 ? first_reuse : FactorReuse::kWithinStep);
+    last_iterations_ = k;
+    const double correction = w.delta.norm();
+    // The error left in a: |delta| before a contraction rate is known; after two corrections from
+    // the same factor, whose rate is rho = |delta_k| / |delta_(k-1)| < 1, the geometric tail
+    // rho / (1 - rho) |delta_k| (Hairer & Wanner, Solving Ordinary Differential Equations II,
+    // section IV.8, eq. 8.10).
+    double remaining = correction;
+    if (previous_correction > 0.0 && factorization_count_ == factorizations &&
+        correction < previous_correction) {
+      const double rate = correction / previous_correction;
+      remaining = rate / (1.0 - rate) * correction;
+    }
+    previous_correction = correction;
+    if (with_acceleration && remaining <= tolerance * std::max(w.a.norm(), 1e-300)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 bool Integrator::factor_constant_blocks(const System& system) {
@@ -413,8 +390,7 @@ bool Integrator::factor_constant_blocks(const System& system) {
 }
 
 void Integrator::solve_iteration(const System& system, double dt, bool with_acceleration,
-                                 double previous_correction) {
-  const bool refactor = previous_correction < 0.0;
+                                 double previous_correction, FactorReuse reuse) {
   Workspace& w = *work_;
   const StepCoefficients& c = w.coefficients;
   if (with_acceleration) {
@@ -443,7 +419,7 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
     w.rhs.setZero(system.velocity_count());
     system.add_applied_forces(c.force_time, w.q_iter, w.v_iter, w.rhs, explicit_springs);
   }
-  if (assemble_state_dependent_blocks(system, refactor)) {
+  if (assemble_state_dependent_blocks(system, reuse)) {
     ++factorization_serial_;
   }
   for (const auto& block : w.blocks.blocks) {
@@ -462,7 +438,7 @@ void Integrator::solve_iteration(const System& system, double dt, bool with_acce
   // Modified Newton: a correction from a kept factor that does not contract by kNewtonStallRatio
   // is discarded; the blocks are factored at this iterate and the same residual solved again
   // (a Newton correction, as the reference path takes at every iterate).
-  if (!refactor && w.delta.norm() > kNewtonStallRatio * previous_correction &&
+  if (previous_correction >= 0.0 && w.delta.norm() > kNewtonStallRatio * previous_correction &&
       refactor_reused_blocks(system)) {
     solve_step_system(system, dt);
   }
@@ -522,7 +498,7 @@ void Integrator::solve_step_system(const System& system, double dt) {
   }
 }
 
-bool Integrator::assemble_state_dependent_blocks(const System& system, bool refactor) {
+bool Integrator::assemble_state_dependent_blocks(const System& system, FactorReuse reuse) {
   Workspace& w = *work_;
   const StepCoefficients& c = w.coefficients;
   const bool fold_springs = settings_.springs == SpringTreatment::kRefactor;
@@ -543,7 +519,11 @@ bool Integrator::assemble_state_dependent_blocks(const System& system, bool refa
         resolve_backend(cholesky, block->free.free_count()) == CholeskyBackend::kCholmodSupernodal;
     const bool lean = settings_.lean_step && block->springs.term_count() == 0;
     block->fused = settings_.lean_step;
-    block->reused = lean && !refactor && block->lean_active;
+    block->reused =
+        lean && block->lean_active &&
+        (reuse == FactorReuse::kWithinStep ||
+         (reuse == FactorReuse::kAcrossSteps && model.needs_newton_iterations() &&
+          block->position_coefficient == c.position && block->velocity_coefficient == c.velocity));
     if (block->reused) {
       // Modified Newton: the factor of an earlier iterate, the residual without the matrices
       model.add_step_residual(q, v, w.a.segment(block->velocity_offset, block->velocity_count),

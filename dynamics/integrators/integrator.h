@@ -29,7 +29,9 @@
 //   state-dependent blocks (superquadrics, free-weight D-NURBS) make the step linearly implicit
 //   (the block and its part of b at the predictor) with optional Newton iterations on a (the
 //   block re-assembled and re-factored at each iterate, tangent stiffness K_T = -d f_int/dq as
-//   the model gives it); constant blocks of the same system are not touched by those.
+//   the model gives it; under the lean step, modified Newton: a factor is kept while the
+//   corrections contract, and for free weights from one step to the next); constant blocks of
+//   the same system are not touched by those.
 // The initial guess of a is the last acceleration under Newmark when some block is
 // state-dependent, zero otherwise (for every block alike, as when A was factored whole, so
 // results are those of the whole-system factorization up to rounding). The StepSystem solve hook
@@ -41,8 +43,6 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <string>
-#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -50,14 +50,9 @@
 #include "dnurbs/core/sparse_cholesky.h"
 #include "dnurbs/dynamics/core/system.h"
 #include "dnurbs/dynamics/integrators/implicit_springs.h"
+#include "dnurbs/dynamics/integrators/integrator_scheme.h"
 
 namespace dnurbs {
-
-enum class IntegratorScheme { kCentral, kImplicitEuler, kNewmark };
-
-/// "central", "implicit-euler" or "newmark"; throws Error naming any other string.
-IntegratorScheme parse_integrator_scheme(std::string_view name);
-std::string_view to_string(IntegratorScheme scheme);
 
 struct IntegratorSettings {
   IntegratorScheme scheme = IntegratorScheme::kNewmark;
@@ -66,7 +61,9 @@ struct IntegratorSettings {
   /// Newton iterations after the linearly implicit solve where matrices depend on q (or
   /// applied forces depend on the state); 0 = linearly implicit (but see automatic_newton).
   int newton_iterations = 0;
-  /// Iterations stop when |delta a| <= newton_tolerance * max(|a|, 1e-300).
+  /// Iterations stop when the error left in a is <= newton_tolerance * max(|a|, 1e-300): |delta
+  /// a| after a new factor, rho / (1 - rho) |delta a| while a kept factor contracts at the rate
+  /// rho (modified Newton; integrator.cpp).
   double newton_tolerance = 1e-12;
   /// With newton_iterations = 0: a system with a model that needs_newton_iterations()
   /// (free-weight D-NURBS) iterates anyway, up to kAutomaticNewtonIterations times, until
@@ -88,6 +85,17 @@ struct IntegratorSettings {
   /// assembly and force calls, sparse sums and SparseCholesky at every iterate (the reference
   /// the tests compare the lean step with).
   bool lean_step = true;
+  /// Modified Newton across steps, under the automatic Newton iterations (automatic_newton): a
+  /// lean block of a model that needs_newton_iterations() (free weights) starts each step from
+  /// the factor its last step ended with, when dt and the scheme's coefficients are the same,
+  /// and refactors only when a correction stalls (kNewtonStallRatio). The step still iterates to
+  /// kAutomaticNewtonTolerance, so it lands on the same implicit solution within it; a step that
+  /// does not converge within kAutomaticNewtonIterations that way (or whose factorization at an
+  /// iterate fails) is solved again from its predictor with the factor there. What a step saves
+  /// is the assembly and factorization, about 10 to 20 residual passes on the sheets of
+  /// bench/free_weights. Linearly implicit steps and a fixed newton_iterations count always
+  /// factor at the predictor. false: every step factors at its predictor.
+  bool keep_factor_across_steps = true;
   /// How springs enter the step (implicit_springs.h): low-rank terms on the factor by default.
   SpringTreatment springs = SpringTreatment::kLowRank;
   /// The factorization of each block: kAutomatic by default, SimplicialLDLT below
@@ -163,7 +171,8 @@ class Integrator {
   int last_newton_iterations() const { return last_iterations_; }
   /// Number of block factorizations of A so far, summed over the models' blocks: a constant
   /// block counts one per dt and scheme (a system of one constant model: one in all), a
-  /// state-dependent block one per solve (per Newton iterate). The mass-matrix factorization of
+  /// state-dependent block one per factorization (at most one per Newton iterate; modified Newton
+  /// keeps a factor while its corrections contract). The mass-matrix factorization of
   /// Newmark's initial acceleration is not counted.
   int factorization_count() const { return factorization_count_; }
   /// Factorizations of model `model`'s block of A (counted as in factorization_count()) since
@@ -185,20 +194,31 @@ class Integrator {
   // Factors the constant blocks whose coefficients changed; true if some block is
   // state-dependent.
   bool factor_constant_blocks(const System& system);
-  // One solve of A delta = b at the current iterate (re-factoring state-dependent blocks), then
-  // a += delta; `with_acceleration`: b subtracts M a (after the first solve or a warm start).
-  // `previous_correction` < 0 (the first solve of a step): state-dependent blocks are factored
-  // at the iterate; else lean blocks keep their factor while the correction contracts to
-  // kNewtonStallRatio * previous_correction or better (modified Newton).
+  // Which state-dependent blocks may keep an earlier factor at an iterate: none (factored at
+  // the iterate), lean blocks (later iterates of a step), or also a step's first iterate
+  // (IntegratorSettings::keep_factor_across_steps: lean blocks of models that iterate, with the
+  // same coefficients).
+  enum class FactorReuse { kNone, kWithinStep, kAcrossSteps };
+  // The step's solves from the initial guess (the last acceleration with `warm_start`, else
+  // zero) at the predictor: up to 1 + `iterations`, until the error left in a is <= `tolerance`
+  // |a| (true) or the cap is reached (false). `first_reuse`: whether the first solve may keep the
+  // factors of the last step.
+  bool iterate(const System& system, double dt, bool warm_start, int iterations, double tolerance,
+               FactorReuse first_reuse);
+  // One solve of A delta = b at the current iterate, then a += delta; `with_acceleration`: b
+  // subtracts M a (after the first solve or a warm start). `reuse` says which blocks keep their
+  // factor; a kept factor whose correction does not contract to kNewtonStallRatio *
+  // `previous_correction` (>= 0; < 0 before the step's first correction) is replaced by one at
+  // the iterate and the correction solved again (modified Newton).
   void solve_iteration(const System& system, double dt, bool with_acceleration,
-                       double previous_correction);
+                       double previous_correction, FactorReuse reuse);
   // delta = A^{-1} b at the iterate (the hook's solve, if any).
   void solve_step_system(const System& system, double dt);
   // Assembles and factors the blocks that kept an earlier factor at this iterate; true if any.
   bool refactor_reused_blocks(const System& system);
   // Assembles the state-dependent blocks at the iterate (the fused pass adds their f_int and g
   // to the right-hand side) and factors them; true if some block was factored.
-  bool assemble_state_dependent_blocks(const System& system, bool refactor);
+  bool assemble_state_dependent_blocks(const System& system, FactorReuse reuse);
   // Brings every block's spring terms to the iterate; refactors constant blocks whose folded
   // springs changed (kRefactor). Returns true if A changed.
   bool update_springs(const System& system);
