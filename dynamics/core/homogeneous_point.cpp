@@ -4,41 +4,14 @@ namespace dnurbs {
 
 namespace {
 
-// The Leibniz rule's terms D^alpha (f g) = sum_{beta <= alpha} C(alpha, beta) D^beta f
-// D^(alpha - beta) g over the quantities 0..5 (x, x_u, x_v, x_uu, x_uv, x_vv), as (alpha, beta,
-// alpha - beta, C), ordered by alpha; every term of alpha has beta and alpha - beta <= alpha.
-struct LeibnizTerm {
-  int alpha;
-  int beta;
-  int rest;
-  double coefficient;
-};
-constexpr std::array<LeibnizTerm, 15> kTerms = {{
-    {0, 0, 0, 1.0},  // x
-    {1, 0, 1, 1.0},
-    {1, 1, 0, 1.0},  // x_u
-    {2, 0, 2, 1.0},
-    {2, 2, 0, 1.0},  // x_v
-    {3, 0, 3, 1.0},
-    {3, 1, 1, 2.0},
-    {3, 3, 0, 1.0},  // x_uu
-    {4, 0, 4, 1.0},
-    {4, 1, 2, 1.0},
-    {4, 2, 1, 1.0},
-    {4, 4, 0, 1.0},  // x_uv
-    {5, 0, 5, 1.0},
-    {5, 2, 2, 2.0},
-    {5, 5, 0, 1.0},  // x_vv
-}};
 // Number of terms with alpha < quantities (quantities 1, 3 or 6).
-constexpr int term_count(int quantities) {
-  return quantities == 1 ? 1 : (quantities == 3 ? 5 : 15);
+int term_count(int quantities) {
+  return kLeibnizFirst[static_cast<size_t>(quantities)];
 }
-// Derivative order in v of each quantity: a term whose alpha exceeds the point's order_v is
-// skipped (its beta and alpha - beta may not, but then alpha itself has no basis).
-constexpr std::array<int, kQuantityCount> kOrderV = {0, 0, 1, 0, 1, 2};
+// A term whose alpha has a v derivative beyond the point's order_v is skipped (its beta and
+// alpha - beta may not, but then alpha itself has no basis).
 bool skipped(const LeibnizTerm& term, int order_v) {
-  return kOrderV[static_cast<size_t>(term.alpha)] > order_v;
+  return kQuantityOrderV[static_cast<size_t>(term.alpha)] > order_v;
 }
 
 }  // namespace
@@ -54,7 +27,7 @@ void homogeneous_point(const HomogeneousSums& sums, int order, int order_v,
   point.inverse_weight.fill(0.0);
   point.inverse_weight[0] = inverse;
   for (int t = 1; t < terms; ++t) {
-    const LeibnizTerm& term = kTerms[static_cast<size_t>(t)];
+    const LeibnizTerm& term = kLeibnizTerms[static_cast<size_t>(t)];
     if (term.beta != 0 && !skipped(term, order_v)) {
       point.inverse_weight[static_cast<size_t>(term.alpha)] -=
           inverse * term.coefficient * sums[static_cast<size_t>(term.beta)][3] *
@@ -66,7 +39,7 @@ void homogeneous_point(const HomogeneousSums& sums, int order, int order_v,
     point.point[static_cast<size_t>(alpha)].setZero();
   }
   for (int t = 0; t < terms; ++t) {
-    const LeibnizTerm& term = kTerms[static_cast<size_t>(t)];
+    const LeibnizTerm& term = kLeibnizTerms[static_cast<size_t>(t)];
     if (skipped(term, order_v)) {
       continue;
     }
@@ -90,7 +63,7 @@ void homogeneous_force_density(const HomogeneousPoint& point,
     density[static_cast<size_t>(beta)].setZero();
   }
   for (int t = 0; t < terms; ++t) {
-    const LeibnizTerm& term = kTerms[static_cast<size_t>(t)];
+    const LeibnizTerm& term = kLeibnizTerms[static_cast<size_t>(t)];
     if (skipped(term, point.order_v)) {
       continue;
     }
@@ -102,7 +75,7 @@ void homogeneous_force_density(const HomogeneousPoint& point,
   }
   // -T_gamma = -sum_{beta >= gamma} C V^(beta - gamma) s_beta
   for (int t = 0; t < terms; ++t) {
-    const LeibnizTerm& term = kTerms[static_cast<size_t>(t)];
+    const LeibnizTerm& term = kLeibnizTerms[static_cast<size_t>(t)];
     if (skipped(term, point.order_v)) {
       continue;
     }

@@ -8,34 +8,6 @@
 
 namespace dnurbs {
 
-namespace {
-
-// Derivative order in u and v of each quantity 0..5 (x, x_u, x_v, x_uu, x_uv, x_vv).
-constexpr std::array<int, kQuantityCount> kOrderU = {0, 1, 0, 2, 1, 0};
-constexpr std::array<int, kQuantityCount> kOrderV = {0, 0, 1, 0, 1, 2};
-
-// Leibniz rule D^alpha (f g) = sum_{beta <= alpha} binom(alpha, beta) D^beta f D^(alpha-beta) g:
-// for each alpha the terms with beta != 0, as (beta, alpha - beta, binomial coefficient).
-struct LeibnizTerm {
-  int beta;
-  int rest;
-  double coefficient;
-};
-struct LeibnizTerms {
-  int count;
-  std::array<LeibnizTerm, 3> terms;
-};
-constexpr std::array<LeibnizTerms, kQuantityCount> kLeibniz = {{
-    {0, {}},                                         // x
-    {1, {{{1, 0, 1.0}}}},                            // x_u
-    {1, {{{2, 0, 1.0}}}},                            // x_v
-    {2, {{{1, 1, 2.0}, {3, 0, 1.0}}}},               // x_uu
-    {3, {{{1, 2, 1.0}, {2, 1, 1.0}, {4, 0, 1.0}}}},  // x_uv
-    {2, {{{2, 2, 2.0}, {5, 0, 1.0}}}},               // x_vv
-}};
-
-}  // namespace
-
 DirectionQuadrature direction_quadrature(const KnotVector& knots, int points_per_span) {
   const GaussLegendreRule& rule = gauss_legendre_rule(points_per_span);
   DirectionQuadrature table;
@@ -134,8 +106,8 @@ void tensor_product_basis(const DirectionBasis& basis_u, const DirectionBasis& b
           basis_u.control_point[static_cast<size_t>(a)] * count_v +
           basis_v.control_point[static_cast<size_t>(b)];
       for (int alpha = 0; alpha < kQuantityCount; ++alpha) {
-        basis.value(alpha, local) = basis_u.value(kOrderU[static_cast<size_t>(alpha)], a) *
-                                    basis_v.value(kOrderV[static_cast<size_t>(alpha)], b);
+        basis.value(alpha, local) = basis_u.value(kQuantityOrderU[static_cast<size_t>(alpha)], a) *
+                                    basis_v.value(kQuantityOrderV[static_cast<size_t>(alpha)], b);
       }
     }
   }
@@ -164,11 +136,12 @@ void rational_jacobian(const PointBasis& basis, int order, const ControlNet& net
   // phi_a = N_a / W by the quotient rule: W phi^alpha = N^alpha - sum_{beta != 0} c W^beta
   // phi^rest.
   for (int alpha = 0; alpha < quantities; ++alpha) {
-    const LeibnizTerms& leibniz = kLeibniz[static_cast<size_t>(alpha)];
+    const auto first = static_cast<size_t>(kLeibnizFirst[static_cast<size_t>(alpha)]);
+    const auto last = static_cast<size_t>(kLeibnizFirst[static_cast<size_t>(alpha) + 1]);
     for (int a = 0; a < n; ++a) {
       double value = basis.value(alpha, a);
-      for (int t = 0; t < leibniz.count; ++t) {
-        const LeibnizTerm& term = leibniz.terms[static_cast<size_t>(t)];
+      for (size_t t = first + 1; t < last; ++t) {  // the terms with beta != 0
+        const LeibnizTerm& term = kLeibnizTerms[t];
         value -= term.coefficient * weight_sum[static_cast<size_t>(term.beta)] *
                  jacobian.phi(term.rest, a);
       }
@@ -200,14 +173,15 @@ void rational_jacobian(const PointBasis& basis, int order, const ControlNet& net
   for (int alpha = 0; alpha < quantities; ++alpha) {
     auto& column = jacobian.weight_column[static_cast<size_t>(alpha)];
     column.resize(3, n);
-    const LeibnizTerms& leibniz = kLeibniz[static_cast<size_t>(alpha)];
+    const auto first = static_cast<size_t>(kLeibnizFirst[static_cast<size_t>(alpha)]);
+    const auto last = static_cast<size_t>(kLeibnizFirst[static_cast<size_t>(alpha) + 1]);
     for (int a = 0; a < n; ++a) {
       const int node = basis.node[static_cast<size_t>(a)];
       const Eigen::Map<const Eigen::Vector3d> position(net.positions + node * net.position_stride);
       Eigen::Vector3d value = jacobian.phi(alpha, a) * position -
                               jacobian.phi(0, a) * jacobian.point[static_cast<size_t>(alpha)];
-      for (int t = 0; t < leibniz.count; ++t) {
-        const LeibnizTerm& term = leibniz.terms[static_cast<size_t>(t)];
+      for (size_t t = first + 1; t < last; ++t) {  // the terms with beta != 0
+        const LeibnizTerm& term = kLeibnizTerms[t];
         value -= term.coefficient * jacobian.phi(term.beta, a) *
                  jacobian.point[static_cast<size_t>(term.rest)];
       }

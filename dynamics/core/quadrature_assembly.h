@@ -27,6 +27,38 @@ inline constexpr int kMaxActiveControlPoints = (kMaxDegree + 1) * (kMaxDegree + 
 inline int quantity_count(int order) {
   return order == 0 ? 1 : (order == 1 ? 3 : 6);
 }
+/// Derivative order in u and in v of each quantity.
+inline constexpr std::array<int, kQuantityCount> kQuantityOrderU = {0, 1, 0, 2, 1, 0};
+inline constexpr std::array<int, kQuantityCount> kQuantityOrderV = {0, 0, 1, 0, 1, 2};
+
+/// One term of the Leibniz rule D^alpha (f g) = sum_{beta <= alpha} C(alpha, beta) D^beta f
+/// D^(alpha - beta) g over the quantities (C the binomial coefficient of the multi-indices).
+struct LeibnizTerm {
+  int alpha;
+  int beta;
+  int rest;  ///< alpha - beta
+  double coefficient;
+};
+/// Every term of the quantities, ordered by alpha (terms of alpha from kLeibnizFirst[alpha] to
+/// kLeibnizFirst[alpha + 1]); beta and alpha - beta of a term are quantities <= alpha.
+inline constexpr std::array<LeibnizTerm, 15> kLeibnizTerms = {{
+    {0, 0, 0, 1.0},  // x
+    {1, 0, 1, 1.0},
+    {1, 1, 0, 1.0},  // x_u
+    {2, 0, 2, 1.0},
+    {2, 2, 0, 1.0},  // x_v
+    {3, 0, 3, 1.0},
+    {3, 1, 1, 2.0},
+    {3, 3, 0, 1.0},  // x_uu
+    {4, 0, 4, 1.0},
+    {4, 1, 2, 1.0},
+    {4, 2, 1, 1.0},
+    {4, 4, 0, 1.0},  // x_uv
+    {5, 0, 5, 1.0},
+    {5, 2, 2, 2.0},
+    {5, 5, 0, 1.0},  // x_vv
+}};
+inline constexpr std::array<int, kQuantityCount + 1> kLeibnizFirst = {0, 1, 3, 5, 8, 12, 15};
 
 /// Gauss-Legendre points over the non-empty spans of one parametric direction and the cached
 /// B-spline basis (values, first and second derivatives) at each of them.

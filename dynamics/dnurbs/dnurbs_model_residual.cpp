@@ -18,10 +18,6 @@ namespace dnurbs {
 
 namespace {
 
-// Derivative order in u and v of each quantity 0..5 (x, x_u, x_v, x_uu, x_uv, x_vv).
-constexpr std::array<int, kQuantityCount> kOrderU = {0, 1, 0, 2, 1, 0};
-constexpr std::array<int, kQuantityCount> kOrderV = {0, 0, 1, 0, 1, 2};
-
 // Per node, the homogeneous control point and rates the residual contracts: (w P, w), the
 // acceleration's and the velocity's rates (w Pdot + wdot P, wdot) and the mixed term wdot Pdot.
 constexpr int kNodeStride = 16;
@@ -178,11 +174,11 @@ void ElementContraction::point_sums(int gu, int gv, HomogeneousSums& sums,
   for (int alpha = 0; alpha < quantities_; ++alpha) {
     auto& sum = sums[static_cast<size_t>(alpha)];
     sum.setZero();
-    const int kv = kOrderV[static_cast<size_t>(alpha)];
+    const int kv = kQuantityOrderV[static_cast<size_t>(alpha)];
     if (kv > order_v_) {
       continue;
     }
-    const int ku = kOrderU[static_cast<size_t>(alpha)];
+    const int ku = kQuantityOrderU[static_cast<size_t>(alpha)];
     for (int i = 0; i < pu(); ++i) {
       const double* x = v_sum(gv, kv, i);
       const double b = basis_u(gu, ku, i);
@@ -206,11 +202,11 @@ void ElementContraction::add_element_force() {
   Buffers& b = buffers_;
   std::fill(b.u_density.begin(), b.u_density.end(), 0.0);
   for (int beta = 0; beta < quantities_; ++beta) {
-    const int kv = kOrderV[static_cast<size_t>(beta)];
+    const int kv = kQuantityOrderV[static_cast<size_t>(beta)];
     if (kv > order_v_) {
       continue;
     }
-    const int ku = kOrderU[static_cast<size_t>(beta)];
+    const int ku = kQuantityOrderU[static_cast<size_t>(beta)];
     for (int gv = 0; gv < v_.points_per_span; ++gv) {
       for (int i = 0; i < pu(); ++i) {
         Eigen::Map<Eigen::Vector4d> out(u_density(gv, kv, i));
