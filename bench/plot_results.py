@@ -170,14 +170,17 @@ def floor_section(rows, run_rows):
             "floor_bench: Newmark step (dt = 0.01) of a clamped bicubic sheet with a point force, "
             "integrator defaults (constant step matrix: CHOLMOD supernodal from 64 free nodes on, "
             "SimplicialLDLT "
-            "below), against one CHOLMOD three-column solve of the same scalar step matrix; at the "
-            "largest size also the step with SimplicialLDLT. Process CPU seconds (the shared machine's wall "
-            "times vary 5x), medians of interleaved calls, ratios "
-            "from one run.\n"]
+            "below; its triangular solves by core/supernodal_solve.h), against one three-column "
+            "solve of the same scalar step matrix by CHOLMOD (cholmod_super_lsolve / ltsolve, "
+            "BLAS per supernode) and by the panel solve the step uses; at the largest size also "
+            "the step with SimplicialLDLT. Process CPU seconds (the shared machine's wall times "
+            "vary 5x), medians of interleaved calls, ratios from one run.\n"]
     text.append(table(["side", "coordinates", "free nodes", "step [s]", "CHOLMOD solve3 [s]",
-                       "step / solve3", "SimplicialLDLT step [s]", "LDLT step / step"],
+                       "step / solve3", "panel solve3 [s]", "step / panel solve3",
+                       "SimplicialLDLT step [s]", "LDLT step / step"],
                       [[r["side"], r["coordinates"], r["free_nodes"], fmt(r["step_seconds"]),
                         fmt(r["cholmod_solve3_seconds"]), fmt(r["step_to_solve"]),
+                        fmt(r["panel_solve3_seconds"]), fmt(r["step_to_panel_solve"]),
                         fmt(r["ldlt_step_seconds"]) if float(r["ldlt_step_seconds"]) > 0 else "-",
                         fmt(r["ldlt_step_to_step"]) if float(r["ldlt_step_to_step"]) > 0 else "-"]
                        for r in rows]))

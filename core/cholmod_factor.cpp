@@ -127,13 +127,16 @@ cholmod_dense wrap_dense(double* data, size_t rows, size_t columns, size_t strid
 }  // namespace
 
 struct CholmodFactor::State {
+  TriangularSolve triangular_solve = TriangularSolve::kPanels;
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
   bool factored = false;
   std::vector<int> permutation;          // P: row k of L is row permutation[k] of A
   std::vector<int> inverse_permutation;  // row i of A is row inverse_permutation[i] of L
-  // Supernodal solve workspace: Y = P B (n by k) and CHOLMOD's E (k by maxesize).
-  std::vector<double> y, e;
+  // Supernodal solve workspace: Y = P B (n by k), node-major for supernodal_solve (k <= 4) or
+  // column-major with CHOLMOD's E (k by maxesize) for wider B; supernodal_solve's panel buffer.
+  std::vector<double> y, e, panel;
+  int largest_supernode_rows = -1;  // of the analyzed factor; -1: not yet counted
   // Simplicial solve workspaces (after a rank update), one set per right-hand-side width.
   struct SimplicialWorkspace {
     Eigen::Index columns = 0;
@@ -178,6 +181,7 @@ struct CholmodFactor::State {
   }
 
   void keep_permutation() {
+    largest_supernode_rows = -1;
     const auto n = static_cast<size_t>(factor->n);
     const int* perm = static_cast<const int*>(factor->Perm);
     permutation.resize(n);
@@ -219,11 +223,30 @@ struct CholmodFactor::State {
     return -1;
   }
 
+  SupernodalFactor supernodal_view() {
+    const auto count = static_cast<int>(factor->nsuper);
+    const int* row_start = static_cast<const int*>(factor->pi);
+    if (largest_supernode_rows < 0) {
+      largest_supernode_rows = 0;
+      for (int s = 0; s < count; ++s) {
+        largest_supernode_rows = std::max(largest_supernode_rows, row_start[s + 1] - row_start[s]);
+      }
+    }
+    return SupernodalFactor{count,
+                            static_cast<const int*>(factor->super),
+                            row_start,
+                            static_cast<const int*>(factor->px),
+                            static_cast<const int*>(factor->s),
+                            static_cast<const double*>(factor->x),
+                            largest_supernode_rows};
+  }
+
   void solve_supernodal(Eigen::Ref<Eigen::MatrixXd> b);
   void solve_simplicial(Eigen::Ref<Eigen::MatrixXd> b);
 };
 
-CholmodFactor::CholmodFactor() : state_(std::make_unique<State>()) {
+CholmodFactor::CholmodFactor(TriangularSolve solve) : state_(std::make_unique<State>()) {
+  state_->triangular_solve = solve;
   limit_blas_to_one_thread();
 }
 CholmodFactor::~CholmodFactor() = default;
@@ -280,12 +303,30 @@ void CholmodFactor::State::solve_supernodal(Eigen::Ref<Eigen::MatrixXd> b) {
   if (y.size() < nk) {
     y.resize(nk);
   }
+  if (triangular_solve == TriangularSolve::kPanels && k <= kSupernodalSolveMaxColumns) {
+    // Y = P B node-major, L \ Y and L^T \ Y reading each value of L once (supernodal_solve.h),
+    // then B = P^T Y.
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Index row = permutation[static_cast<size_t>(i)];
+      for (Eigen::Index c = 0; c < k; ++c) {
+        y[static_cast<size_t>(i * k + c)] = b(row, c);
+      }
+    }
+    supernodal_solve(supernodal_view(), static_cast<int>(k), y.data(), panel);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Index row = permutation[static_cast<size_t>(i)];
+      for (Eigen::Index c = 0; c < k; ++c) {
+        b(row, c) = y[static_cast<size_t>(i * k + c)];
+      }
+    }
+    return;
+  }
   const size_t e_size = std::max<size_t>(1, static_cast<size_t>(k) * factor->maxesize);
   if (e.size() < e_size) {
     e.resize(e_size);
   }
-  // Y = P B, then L \ Y and L^T \ Y with CHOLMOD's supernodal triangular solves (dense BLAS on each
-  // supernode), then B = P^T Y.
+  // Wider B (or kBlas): Y = P B, then L \ Y and L^T \ Y with CHOLMOD's supernodal triangular solves
+  // (dense BLAS on each supernode), then B = P^T Y.
   for (Eigen::Index c = 0; c < k; ++c) {
     double* column = y.data() + c * n;
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -394,6 +435,15 @@ void CholmodFactor::rank_update(const SparseMatrix& c, bool downdate) {
                      s.factor->n, " (column ", s.permutation[static_cast<size_t>(pivot)],
                      " of the matrix) is not positive");
   }
+}
+
+SupernodalFactor CholmodFactor::supernodal_factor() const {
+  State& s = *state_;
+  if (!s.factored || s.factor->is_super == 0) {
+    throw make_error("CHOLMOD factor: ",
+                     s.factored ? "not supernodal (after a rank update)" : "nothing is factored");
+  }
+  return s.supernodal_view();
 }
 
 int CholmodFactor::size() const {

@@ -10,6 +10,8 @@
 #include <Eigen/SparseCore>
 #include <memory>
 
+#include "dnurbs/core/supernodal_solve.h"
+
 namespace dnurbs {
 
 /// Limits the BLAS under CHOLMOD to one thread, once per process (later calls do nothing).
@@ -20,6 +22,12 @@ namespace dnurbs {
 /// with the reference BLAS (single-threaded) it finds neither and does nothing. Every CholmodFactor
 /// calls it on construction. Returns true if an OpenBLAS thread setting was found.
 bool limit_blas_to_one_thread();
+
+/// How a supernodal factor solves: kPanels by supernodal_solve (core/supernodal_solve.h, reading
+/// L once per substitution, for 1 to 4 right-hand sides; wider ones go to CHOLMOD); kBlas by
+/// CHOLMOD's cholmod_super_lsolve / ltsolve (dtrsm and dgemm per supernode), kept for comparison
+/// (bench/floor measures the step against it).
+enum class TriangularSolve { kPanels, kBlas };
 
 /// CHOLMOD factorization P A P^T = L L^T (supernodal; L L^T or L D L^T simplicial after a rank
 /// update) of a symmetric positive definite n by n matrix A.
@@ -37,7 +45,7 @@ class CholmodFactor {
  public:
   using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-  CholmodFactor();
+  explicit CholmodFactor(TriangularSolve solve = TriangularSolve::kPanels);
   ~CholmodFactor();
   CholmodFactor(CholmodFactor&& other) noexcept;
   CholmodFactor& operator=(CholmodFactor&& other) noexcept;
@@ -57,6 +65,8 @@ class CholmodFactor {
 
   /// Solves A X = B in place: b n by k (any k; k = 3 for x, y, z). The workspace grows to the
   /// largest k seen and is reused, so solves allocate nothing after the first of each width.
+  /// A supernodal factor solves as the constructor's TriangularSolve says; a simplicial one
+  /// (after a rank update) by cholmod_solve2.
   void solve_in_place(Eigen::Ref<Eigen::MatrixXd> b);
 
   /// Rank-r modification of the factor: afterwards it factors A + C C^T (downdate = false) or
@@ -66,6 +76,11 @@ class CholmodFactor {
   /// the same ordering to return to supernodal. Throws Error if the downdate leaves A - C C^T not
   /// positive definite (numerically), naming the column.
   void rank_update(const SparseMatrix& c, bool downdate);
+
+  /// The supernodal factor's arrays (views into CHOLMOD's, valid until the next analyze,
+  /// factorize or rank_update), in L's row order. Throws Error unless is_factored() and
+  /// is_supernodal().
+  SupernodalFactor supernodal_factor() const;
 
   int size() const;
   bool is_factored() const;

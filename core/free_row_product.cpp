@@ -1,7 +1,14 @@
 #include "dnurbs/core/free_row_product.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <string>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define DNURBS_FREE_ROW_PRODUCT_AVX2 1
+#endif
 
 #include "dnurbs/core/error.h"
 
@@ -13,10 +20,104 @@ using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 constexpr int kMaxColumns = 8;
 
+// The arrays of one merged pattern, as the vectorized kernel reads them.
+struct MergedRows {
+  const int* rows;
+  const int* row_start;
+  const int* column;
+  const double* pairs;  // A_0, A_1 of each entry side by side
+  const double* last;   // A_2 of each entry
+  size_t row_count;
+  int size;
+};
+
+#ifdef DNURBS_FREE_ROW_PRODUCT_AVX2
+
+bool cpu_has_avx2_fma() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return has;
+}
+
+// The three accumulators of one entry stream, one per matrix.
+struct Sums {
+  __m256d a0;
+  __m256d a1;
+  __m256d a2;
+};
+
+// x, y, z of a node and one more lane; masked to the three for the last node of the array.
+template <bool kLastNode>
+__attribute__((target("avx2,fma"), always_inline)) inline __m256d load_node(const double* node) {
+  if constexpr (kLastNode) {
+    return _mm256_maskload_pd(node, _mm256_set_epi64x(0, -1, -1, -1));
+  } else {
+    return _mm256_loadu_pd(node);
+  }
+}
+
+// One entry p of up to three matrices (Mask bit k: matrix k) into `sums`: the x, y, z of node j
+// read as four doubles (the fourth lane, the next node's x, is never used); for the last node,
+// whose fourth lane lies past the array, a masked load.
+template <int Mask, bool kLastNode>
+__attribute__((target("avx2,fma"), always_inline)) inline void add_entry(
+    const MergedRows& m, const std::array<const double*, 3>& x, int p, Sums& sums) {
+  const ptrdiff_t offset = static_cast<ptrdiff_t>(m.column[p]) * 3;
+  if ((Mask & 1) != 0) {
+    sums.a0 = _mm256_fmadd_pd(_mm256_broadcast_sd(m.pairs + static_cast<ptrdiff_t>(p) * 2),
+                              load_node<kLastNode>(x[0] + offset), sums.a0);
+  }
+  if ((Mask & 2) != 0) {
+    sums.a1 = _mm256_fmadd_pd(_mm256_broadcast_sd(m.pairs + static_cast<ptrdiff_t>(p) * 2 + 1),
+                              load_node<kLastNode>(x[1] + offset), sums.a1);
+  }
+  if ((Mask & 4) != 0) {
+    sums.a2 = _mm256_fmadd_pd(_mm256_broadcast_sd(m.last + p), load_node<kLastNode>(x[2] + offset),
+                              sums.a2);
+  }
+}
+
+// r(i, :) -= sum_m A_m(i, :) X_m for three columns, four lanes at a time: two entries in flight
+// with their own accumulators (the fused multiply-adds of one accumulator wait on each other).
+// The sums are those of the scalar kernel in another order and with fused rounding.
+template <int Mask>
+__attribute__((target("avx2,fma"))) void subtract_rows_avx2(const MergedRows& m,
+                                                            const std::array<const double*, 3>& x,
+                                                            double* r) {
+  for (size_t f = 0; f < m.row_count; ++f) {
+    Sums even{_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
+    Sums odd = even;
+    int p = m.row_start[f];
+    const int end = m.row_start[f + 1];
+    // Columns ascend: only a row's last entry can be the last node.
+    const int unmasked = end > p && m.column[end - 1] == m.size - 1 ? end - 1 : end;
+    for (; p + 2 <= unmasked; p += 2) {
+      add_entry<Mask, false>(m, x, p, even);
+      add_entry<Mask, false>(m, x, p + 1, odd);
+    }
+    if (p < unmasked) {
+      add_entry<Mask, false>(m, x, p++, even);
+    }
+    if (p < end) {
+      add_entry<Mask, true>(m, x, p, odd);
+    }
+    const __m256d total =
+        _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(even.a0, odd.a0), _mm256_add_pd(even.a1, odd.a1)),
+                      _mm256_add_pd(even.a2, odd.a2));
+    alignas(32) std::array<double, 4> lanes{};
+    _mm256_store_pd(lanes.data(), total);
+    double* ri = r + static_cast<ptrdiff_t>(m.rows[f]) * 3;
+    for (int c = 0; c < 3; ++c) {
+      ri[c] -= lanes[static_cast<size_t>(c)];
+    }
+  }
+}
+
+#endif
+
 }  // namespace
 
 FreeRowProduct::FreeRowProduct(const std::array<const SparseMatrix*, kMatrices>& matrices,
-                               const std::vector<int>& free_rows, int columns)
+                               const std::vector<int>& free_rows, int columns, bool vectorize)
     : columns_(columns), rows_(free_rows) {
   if (columns < 1 || columns > kMaxColumns) {
     throw make_error("free-row product: ", columns, " columns, must be 1..", kMaxColumns);
@@ -80,6 +181,11 @@ FreeRowProduct::FreeRowProduct(const std::array<const SparseMatrix*, kMatrices>&
     }
     row_start_.push_back(static_cast<int>(entry_column_.size()));
   }
+#ifdef DNURBS_FREE_ROW_PRODUCT_AVX2
+  vectorized_ = vectorize && columns_ == 3 && cpu_has_avx2_fma();
+#else
+  static_cast<void>(vectorize);
+#endif
 }
 
 // One pass over the merged pattern; Columns = 0: columns_ at run time; Mask: bit m set if
@@ -121,6 +227,25 @@ void FreeRowProduct::subtract(const std::array<const double*, kMatrices>& x, dou
       mask |= 1 << m;
     }
   }
+#ifdef DNURBS_FREE_ROW_PRODUCT_AVX2
+  if (vectorized_ && (mask == 1 || mask == 3 || mask == 7)) {
+    const MergedRows merged{rows_.data(),
+                            row_start_.data(),
+                            entry_column_.data(),
+                            pair_values_.data(),
+                            last_values_.data(),
+                            rows_.size(),
+                            size_};
+    if (mask == 1) {
+      subtract_rows_avx2<1>(merged, x, r);
+    } else if (mask == 3) {
+      subtract_rows_avx2<3>(merged, x, r);
+    } else {
+      subtract_rows_avx2<7>(merged, x, r);
+    }
+    return;
+  }
+#endif
   // The common cases unrolled (x, y, z columns; K alone, K and D, K, D and M); any other
   // combination at run time.
   if (columns_ == 3 && mask == 1) {

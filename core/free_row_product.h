@@ -23,22 +23,30 @@ namespace dnurbs {
 /// nothing). Rounding: the sum sum_m A_m(i, :) X_m is formed first and then subtracted, so r
 /// differs from three separate products r -= A_0 X_0; r -= A_1 X_1; ... by rounding only (a few
 /// 1e-16 relative to the largest term).
+///
+/// With three columns on an x86-64 processor with AVX2 and FMA (checked at run time), each
+/// entry's x, y, z are multiplied four lanes at a time, with two entries in flight: on the
+/// 2-core machine 1.6x (1e4 unknowns, in cache) to 1.9x (1e5, from memory) faster than the scalar
+/// pass, which is compute-bound at its 12 flops per entry. The sums are the same to rounding.
 class FreeRowProduct {
  public:
   static constexpr int kMatrices = 3;
 
   FreeRowProduct() = default;
   /// `matrices`: n by n each or nullptr; `free_rows`: distinct rows in 0..n-1, ascending;
-  /// `columns`: 1..8. Throws Error for a non-square matrix or sizes that differ, a row out of
-  /// range or out of order, or columns outside 1..8.
+  /// `columns`: 1..8; `vectorize`: false keeps the scalar pass (tests compare the two). Throws
+  /// Error for a non-square matrix or sizes that differ, a row out of range or out of order, or
+  /// columns outside 1..8.
   FreeRowProduct(const std::array<const SparseMatrix*, kMatrices>& matrices,
-                 const std::vector<int>& free_rows, int columns);
+                 const std::vector<int>& free_rows, int columns, bool vectorize = true);
 
   int size() const { return size_; }
   int columns() const { return columns_; }
   int free_row_count() const { return static_cast<int>(rows_.size()); }
   /// Entries of the merged pattern (one per free row and column that some matrix has).
   int entry_count() const { return static_cast<int>(entry_column_.size()); }
+  /// Whether subtract() multiplies four lanes at a time (three columns, AVX2 and FMA present).
+  bool vectorized() const { return vectorized_; }
 
   /// r -= sum_m A_m X_m on the free rows; x[m] points to n * columns() values (nullptr: matrix m
   /// is skipped, as if X_m were zero); r to n * columns() values.
@@ -50,6 +58,7 @@ class FreeRowProduct {
 
   int size_ = 0;
   int columns_ = 0;
+  bool vectorized_ = false;
   std::array<bool, kMatrices> present_{};  // matrix m has non-zeros
   std::vector<int> rows_;                  // the free rows
   std::vector<int> row_start_;             // entries of free row k: [row_start_[k], [k + 1])

@@ -254,7 +254,7 @@ void SparseCholesky::analyze(const SparseMatrix& a) {
   b.rows = -1;  // no valid analysis until this one succeeds
   if (b.active == CholeskyBackend::kCholmodSupernodal) {
     if (!b.cholmod) {
-      b.cholmod = std::make_unique<CholmodFactor>();
+      b.cholmod = std::make_unique<CholmodFactor>(settings_.triangular_solve);
     }
     b.cholmod->analyze(a);
   } else {

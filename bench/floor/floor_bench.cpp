@@ -143,13 +143,18 @@ void step_against_solve(int side, bool ldlt, const Options& options, std::ostrea
   const double gamma = 0.5;
   const SparseMatrix a =
       free.reduce(scalar.mass + gamma * kDt * scalar.damping + beta * kDt * kDt * scalar.stiffness);
-  SparseCholesky cholmod(SparseCholeskySettings{CholeskyBackend::kCholmodSupernodal});
+  SparseCholeskySettings blas_settings{CholeskyBackend::kCholmodSupernodal};
+  blas_settings.triangular_solve = TriangularSolve::kBlas;
+  SparseCholesky cholmod(blas_settings);
   cholmod.factorize(a);
+  SparseCholesky panels(SparseCholeskySettings{CholeskyBackend::kCholmodSupernodal});
+  panels.factorize(a);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   const Eigen::MatrixXd b = Eigen::MatrixXd::NullaryExpr(
       a.rows(), 3, [&](Eigen::Index, Eigen::Index) { return uniform(random); });
   Eigen::MatrixXd x = b;
+  Eigen::MatrixXd y = b;
 
   System automatic = simulation.system();
   Integrator integrator;  // defaults: kAutomatic
@@ -165,24 +170,29 @@ void step_against_solve(int side, bool ldlt, const Options& options, std::ostrea
                                               [&] {
                                                 x = b;
                                                 cholmod.solve_in_place(x);
+                                              },
+                                              [&] {
+                                                y = b;
+                                                panels.solve_in_place(y);
                                               }};
   if (ldlt) {
     calls.emplace_back([&] { ldlt_integrator.step(simplicial, kDt); });
   }
   const std::vector<double> t =
       interleaved(calls, options.quick ? 3 : 7, options.quick ? 0.05 : 1.0);
-  const double ldlt_step = ldlt ? t[2] : 0.0;
+  const double ldlt_step = ldlt ? t[3] : 0.0;
   std::printf(
       "side %4d: %6ld coordinates, %6ld free nodes: step %.3e s, CHOLMOD solve3 %.3e s, "
-      "step / solve %.3f",
+      "step / solve %.3f, panel solve3 %.3e s, step / panel solve %.3f",
       side, static_cast<long>(automatic.velocity_count()), static_cast<long>(a.rows()), t[0], t[1],
-      t[0] / t[1]);
+      t[0] / t[1], t[2], t[0] / t[2]);
   if (ldlt) {
     std::printf(", SimplicialLDLT step %.3e s, LDLT step / step %.2f", ldlt_step, ldlt_step / t[0]);
   }
   std::printf("\n");
   csv << side << ',' << automatic.velocity_count() << ',' << a.rows() << ',' << t[0] << ',' << t[1]
-      << ',' << t[0] / t[1] << ',' << ldlt_step << ',' << (ldlt ? ldlt_step / t[0] : 0.0) << '\n';
+      << ',' << t[0] / t[1] << ',' << t[2] << ',' << t[0] / t[2] << ',' << ldlt_step << ','
+      << (ldlt ? ldlt_step / t[0] : 0.0) << '\n';
 }
 
 // The sheet scene through run_scene (the `dnurbs run` path), timed between its progress
@@ -267,7 +277,7 @@ int run(int argc, char** argv) {
   }
   std::ostringstream steps_csv;
   steps_csv << "side,coordinates,free_nodes,step_seconds,cholmod_solve3_seconds,step_to_solve,"
-               "ldlt_step_seconds,ldlt_step_to_step\n";
+               "panel_solve3_seconds,step_to_panel_solve,ldlt_step_seconds,ldlt_step_to_step\n";
   for (size_t k = 0; k < options.sides.size(); ++k) {
     step_against_solve(options.sides[k], k + 1 == options.sides.size(), options, steps_csv);
   }

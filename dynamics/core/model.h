@@ -139,11 +139,13 @@ class Model {
   /// integrators then factor one scalar matrix and solve b right-hand sides.
   virtual int kronecker_block_size() const { return 0; }
   virtual const ModelMatrices* scalar_matrices() const { return nullptr; }
-  /// Constant-matrix models: the constant part b of an affine internal force f_int(q) = b - K q
-  /// (velocity_count() entries; K q_r of a D-NURBS rest shape q_r), which the integrators add
-  /// where they form K q from the scalar matrices instead of calling add_internal_force; null
-  /// when b = 0 (the default).
-  virtual const Eigen::VectorXd* internal_force_offset() const { return nullptr; }
+  /// Constant-matrix models whose internal force is f_int(q) = -K (q - q_r): the rest
+  /// coordinates q_r (coordinate_count() entries; a D-NURBS rest shape), which the integrators
+  /// subtract before they form K (q - q_r) from the scalar matrices instead of calling
+  /// add_internal_force. A shape at its rest then feels exactly no force, and a small
+  /// displacement is not the difference of two large products K q and K q_r. Null when q_r = 0
+  /// (the default).
+  virtual const Eigen::VectorXd* linear_rest_coordinates() const { return nullptr; }
 
   /// Adds the internal (elastic) force f_int(q) = -dE/dq to `force` (size velocity_count()).
   /// Default: -K(q) q, right for every model whose energy is (1/2) q^T K(q) q.

@@ -180,9 +180,9 @@ class RationalControlNetModel : public Model {
   /// rest_coordinates() with plastic flow, empty without.
   Eigen::VectorXd flowing_rest_coordinates() const override;
   void restore_flowing_rest_coordinates(ConstVectorRef rest) override;
-  /// Fixed weights with a rest shape: K q_r; null otherwise.
-  const Eigen::VectorXd* internal_force_offset() const override {
-    return has_rest_shape() && mode_ == WeightMode::kFixed ? &rest_force_ : nullptr;
+  /// Fixed weights with a rest shape: q_r; null otherwise.
+  const Eigen::VectorXd* linear_rest_coordinates() const override {
+    return has_rest_shape() && mode_ == WeightMode::kFixed ? &rest_coordinates_ : nullptr;
   }
 
  protected:

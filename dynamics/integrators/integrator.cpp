@@ -67,6 +67,7 @@ struct Integrator::Workspace {
   StepCoefficients coefficients;
   Eigen::VectorXd q_pred, v_pred, v_store, a, delta, rhs, q_iter, v_iter, external, increment;
   Eigen::VectorXd q_new, v_new;
+  Eigen::VectorXd displacement;  // q - q_r of Kronecker blocks with a rest shape
 };
 
 namespace {
@@ -111,13 +112,18 @@ void subtract_block_terms(const System& system, bool with_acceleration, Integrat
     const Eigen::Index vo = block->velocity_offset;
     const Eigen::Index vc = block->velocity_count;
     if (block->kronecker) {
-      // S_K Q + S_D V (+ S_M A) in one pass over the free nodes (fixed rows are not solved)
-      block->residual.subtract({w.q_iter.data() + block->coordinate_offset, w.v_iter.data() + vo,
-                                with_acceleration ? w.a.data() + vo : nullptr},
-                               w.rhs.data() + vo);
-      if (const Eigen::VectorXd* offset = system.model(block->model).internal_force_offset()) {
-        w.rhs.segment(vo, vc) += *offset;  // f_int = b - K q (Model::internal_force_offset)
+      // S_K (Q - Q_r) + S_D V (+ S_M A) in one pass over the free nodes (fixed rows are not
+      // solved); f_int = -K (q - q_r) (Model::linear_rest_coordinates)
+      const double* position = w.q_iter.data() + block->coordinate_offset;
+      if (const Eigen::VectorXd* rest = system.model(block->model).linear_rest_coordinates()) {
+        w.displacement.resize(system.coordinate_count());
+        auto displacement = w.displacement.segment(block->coordinate_offset, rest->size());
+        displacement = w.q_iter.segment(block->coordinate_offset, rest->size()) - *rest;
+        position = displacement.data();
       }
+      block->residual.subtract(
+          {position, w.v_iter.data() + vo, with_acceleration ? w.a.data() + vo : nullptr},
+          w.rhs.data() + vo);
     } else {
       if (!block->fused) {
         system.model(block->model)

@@ -4,6 +4,7 @@
 
 #include "dnurbs/core/free_row_product.h"
 
+#include <array>
 #include <random>
 #include <vector>
 
@@ -107,6 +108,31 @@ TEST(FreeRowProduct, EqualsThreeSeparateProductsOnTheFreeRows) {
   product.subtract({c.x.data(), c.v.data(), c.a.data()}, result.data());
   const NodeMatrix reference = c.r - c.k * c.x - c.d * c.v - c.m * c.a;
   expect_matches(c, result, reference);
+}
+
+TEST(FreeRowProduct, VectorizedAndScalarPassesAgreeToRounding) {
+  // Both kernels for each combination of matrices, against the separate products; the last node
+  // (row and column n - 1) is free, so the vectorized pass's masked load of it is exercised.
+  const Case c = make_case(3, true);
+  const FreeRowProduct scalar({&c.k, &c.d, &c.m}, free_rows(c.n), 3, /*vectorize=*/false);
+  const FreeRowProduct fast({&c.k, &c.d, &c.m}, free_rows(c.n), 3);
+  EXPECT_FALSE(scalar.vectorized());
+  if (!fast.vectorized()) {
+    GTEST_SKIP() << "this processor has no AVX2 and FMA: only the scalar pass runs";
+  }
+  const std::array<std::array<const double*, 3>, 3> inputs{{{c.x.data(), nullptr, nullptr},
+                                                            {c.x.data(), c.v.data(), nullptr},
+                                                            {c.x.data(), c.v.data(), c.a.data()}}};
+  const std::array<NodeMatrix, 3> references{c.r - c.k * c.x, c.r - c.k * c.x - c.d * c.v,
+                                             c.r - c.k * c.x - c.d * c.v - c.m * c.a};
+  for (size_t k = 0; k < inputs.size(); ++k) {
+    NodeMatrix from_scalar = c.r;
+    NodeMatrix from_fast = c.r;
+    scalar.subtract(inputs[k], from_scalar.data());
+    fast.subtract(inputs[k], from_fast.data());
+    expect_matches(c, from_fast, references[k]);
+    expect_matches(c, from_scalar, references[k]);
+  }
 }
 
 TEST(FreeRowProduct, SkippedMatricesAddNothing) {

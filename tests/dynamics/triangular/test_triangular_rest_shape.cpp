@@ -128,10 +128,9 @@ TEST(TriangularRestShape, FixedWeightEnergyIsTheQuadraticFormOfTheChange) {
   model.add_internal_force(q, force);
   const Eigen::VectorXd expected_force = -(stiffness * d);
   EXPECT_LT((force - expected_force).norm(), 1e-13 * expected_force.norm());
-  // The Kronecker step path adds the constant part K q_r
-  ASSERT_NE(model.internal_force_offset(), nullptr);
-  EXPECT_LT((*model.internal_force_offset() - stiffness * rest).norm(),
-            1e-14 * (stiffness * rest).norm());
+  // The Kronecker step path forms K (q - q_r) with the rest coordinates
+  ASSERT_NE(model.linear_rest_coordinates(), nullptr);
+  EXPECT_EQ(*model.linear_rest_coordinates(), rest);
 }
 
 // The centre of a clamped flat patch pushed down for 4 s, then released for 200 s.
