@@ -30,11 +30,12 @@ inline constexpr int kDefaultSupernodalThreshold = 200;
 
 /// Rows from which kAutomatic uses CHOLMOD for a matrix factored once and then only solved with
 /// (the integrator's constant step matrices: fixed-weight D-NURBS, grid surfaces, snakes), where
-/// the solve alone decides. Measured by bench/floor (three runs on the shared 2-core machine,
-/// 2026-11-25), the step of a clamped bicubic sheet with SimplicialLDLT over the same step with
-/// CHOLMOD: 0.89-0.93 at 4 free nodes, 0.87-0.91 at 9, 0.94-0.96 at 16, 0.91 at 25, 0.99-1.04 at
-/// 49 and 1.24 at 100: CHOLMOD's supernodal solve wins from about 50 rows.
-inline constexpr int kDefaultConstantSupernodalThreshold = 64;
+/// the solve alone decides. Measured on the step of a clamped bicubic sheet (bench/floor's
+/// scene, three runs on the shared 2-core machine, 2026-11-29), SimplicialLDLT step over the step
+/// with CHOLMOD and its panel solves (core/supernodal_solve.h): 0.97-0.98 at 4 free nodes,
+/// 0.97-0.98 at 9, 1.03-1.11 at 16, 1.06-1.12 at 25, 1.16-1.21 at 36, 1.33-1.35 at 49, 1.46 at 64
+/// and 1.76 at 100: CHOLMOD wins from 16 rows (with CHOLMOD's BLAS solve it won from about 50).
+inline constexpr int kDefaultConstantSupernodalThreshold = 16;
 
 struct SparseCholeskySettings {
   CholeskyBackend backend = CholeskyBackend::kAutomatic;
