@@ -168,7 +168,7 @@ def floor_section(rows, run_rows):
     """The solver-floor tables of floor_bench (bench/floor/README.md)."""
     text = ["\n## Solver floor\n",
             "floor_bench: Newmark step (dt = 0.01) of a clamped bicubic sheet with a point force, "
-            "integrator defaults (constant step matrix: CHOLMOD supernodal from 64 free nodes on, "
+            "integrator defaults (constant step matrix: CHOLMOD supernodal from 16 free nodes on, "
             "SimplicialLDLT "
             "below; its triangular solves by core/supernodal_solve.h), against one three-column "
             "solve of the same scalar step matrix by CHOLMOD (cholmod_super_lsolve / ltsolve, "
