@@ -153,9 +153,10 @@ void read_models(const SceneReader& reader, const JsonValue& root, Scene& scene)
 void read_integrator(const SceneReader& reader, const JsonValue& integrator,
                      SceneIntegrator& result) {
   const std::string path = "integrator";
-  reader.object(integrator, path,
-                {"scheme", "dt", "newton_iterations", "newton_tolerance", "automatic_newton",
-                 "newmark_beta", "newmark_gamma", "max_energy", "energy_growth"});
+  reader.object(
+      integrator, path,
+      {"scheme", "dt", "newton_iterations", "newton_tolerance", "automatic_newton",
+       "keep_factor_across_steps", "newmark_beta", "newmark_gamma", "max_energy", "energy_growth"});
   if (const JsonValue* scheme = reader.find(integrator, "scheme")) {
     result.scheme =
         reader.choice(*scheme, "integrator.scheme", {"central", "implicit-euler", "newmark"});
@@ -164,6 +165,7 @@ void read_integrator(const SceneReader& reader, const JsonValue& integrator,
   reader.integer_key(integrator, path, "newton_iterations", result.newton_iterations, 0, 1000);
   reader.number_key(integrator, path, "newton_tolerance", result.newton_tolerance, 0.0, false);
   reader.boolean_key(integrator, path, "automatic_newton", result.automatic_newton);
+  reader.boolean_key(integrator, path, "keep_factor_across_steps", result.keep_factor_across_steps);
   reader.number_key(integrator, path, "newmark_beta", result.newmark_beta, 0.0, true);
   reader.number_key(integrator, path, "newmark_gamma", result.newmark_gamma, 0.0, true);
   reader.number_key(integrator, path, "max_energy", result.max_energy, 0.0, true);
@@ -432,6 +434,7 @@ JsonOut scene_json(const Scene& scene, bool with_output) {
                         {"newton_iterations", s.newton_iterations},
                         {"newton_tolerance", s.newton_tolerance},
                         {"automatic_newton", s.automatic_newton},
+                        {"keep_factor_across_steps", s.keep_factor_across_steps},
                         {"newmark_beta", s.newmark_beta},
                         {"newmark_gamma", s.newmark_gamma},
                         {"max_energy", s.max_energy},

@@ -70,6 +70,9 @@ struct SceneIntegrator {
   /// IntegratorSettings::automatic_newton: Newton iterations for free-weight D-NURBS even with
   /// newton_iterations = 0.
   bool automatic_newton = true;
+  /// IntegratorSettings::keep_factor_across_steps: the automatic Newton starts each step from the
+  /// factor the last step ended with.
+  bool keep_factor_across_steps = true;
   double newmark_beta = 0.25;
   double newmark_gamma = 0.5;
   /// The run stops as diverged when its energy (kinetic + elastic + springs) exceeds this.

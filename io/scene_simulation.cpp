@@ -134,6 +134,7 @@ SceneSimulation::SceneSimulation(Scene scene) : scene_(std::move(scene)) {
   settings.newton_iterations = scene_.integrator.newton_iterations;
   settings.newton_tolerance = scene_.integrator.newton_tolerance;
   settings.automatic_newton = scene_.integrator.automatic_newton;
+  settings.keep_factor_across_steps = scene_.integrator.keep_factor_across_steps;
   integrator_ = Integrator(settings);
   hash_ = scene_state_hash(scene_);
   budget_ = EnergyBudget({scene_.integrator.energy_growth, scene_.integrator.max_energy});

@@ -17,9 +17,10 @@ namespace {
 
 Integrator make_integrator(const std::string& scheme, int newton_iterations,
                            double newton_tolerance, double newmark_beta, double newmark_gamma,
-                           bool automatic_newton) {
+                           bool automatic_newton, bool keep_factor_across_steps) {
   IntegratorSettings settings;
   settings.automatic_newton = automatic_newton;
+  settings.keep_factor_across_steps = keep_factor_across_steps;
   settings.scheme = parse_integrator_scheme(scheme);
   settings.newton_iterations = newton_iterations;
   settings.newton_tolerance = newton_tolerance;
@@ -62,10 +63,13 @@ void bind_integrator(py::module_& module) {
       .def(py::init(&make_integrator), py::arg("scheme") = "newmark",
            py::arg("newton_iterations") = 0, py::arg("newton_tolerance") = 1e-12,
            py::arg("newmark_beta") = 0.25, py::arg("newmark_gamma") = 0.5,
-           py::arg("automatic_newton") = true,
+           py::arg("automatic_newton") = true, py::arg("keep_factor_across_steps") = true,
            "scheme: 'central', 'implicit-euler' or 'newmark'. automatic_newton: with "
            "newton_iterations = 0, free-weight D-NURBS models still iterate Newton (up to 10 "
-           "times, to 1e-8 of |a|); False makes the step linearly implicit for every model.")
+           "times, to 1e-8 of |a|); False makes the step linearly implicit for every model. "
+           "keep_factor_across_steps: that Newton starts each step from the factor the last "
+           "step ended with and refactors where a correction stalls; False factors at every "
+           "step's predictor (the same steps within the tolerance, more factorizations).")
       .def(
           "step",
           [](Integrator& self, System& system, double dt, int count) {

@@ -105,7 +105,8 @@ const char* const kFullScene = R"json({
      "alpha": 1, "beta": 2}
   ],
   "integrator": {"scheme": "implicit-euler", "dt": 0.005, "newton_iterations": 2,
-                 "newton_tolerance": 1e-8, "automatic_newton": false, "newmark_beta": 0.3,
+                 "newton_tolerance": 1e-8, "automatic_newton": false,
+                 "keep_factor_across_steps": false, "newmark_beta": 0.3,
                  "newmark_gamma": 0.6,
                  "max_energy": 1e9},
   "run": {"steps": 7},
@@ -167,6 +168,10 @@ TEST(SceneFile, ChangingAnyValueMakesScenesDifferent) {
   EXPECT_FALSE(changed == scene);
   changed = scene;
   changed.integrator.automatic_newton = !scene.integrator.automatic_newton;
+  EXPECT_FALSE(changed == scene);
+  EXPECT_NE(scene_state_hash(changed), scene_state_hash(scene));
+  changed = scene;
+  changed.integrator.keep_factor_across_steps = !scene.integrator.keep_factor_across_steps;
   EXPECT_FALSE(changed == scene);
   EXPECT_NE(scene_state_hash(changed), scene_state_hash(scene));
   changed = scene;

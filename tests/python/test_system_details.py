@@ -176,6 +176,17 @@ def test_free_weights_iterate_newton_unless_told_not_to():
     assert linear.last_newton_iterations == 0
     with pytest.raises(dnurbs.Error, match="not positive definite"):
         linear.step(system, 0.01, count=99)
+    # keep_factor_across_steps=False: a factor at every step's predictor, the same steps within
+    # the Newton tolerance (1e-8 of |a|)
+    kept_system, fresh_system = free_weight_rod(), free_weight_rod()
+    kept = dnurbs.Integrator()
+    fresh = dnurbs.Integrator(keep_factor_across_steps=False)
+    kept.step(kept_system, 0.01, count=40)
+    fresh.step(fresh_system, 0.01, count=40)
+    assert fresh.factorization_count >= 40
+    assert kept.factorization_count < fresh.factorization_count
+    q_kept, q_fresh = kept_system.coordinates, fresh_system.coordinates
+    assert np.max(np.abs(q_kept - q_fresh)) <= 1e-7 * np.max(np.abs(q_fresh))
 
 
 def test_data_forces_fit_and_track_points():
