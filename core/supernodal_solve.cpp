@@ -37,17 +37,38 @@ Panel panel(const SupernodalFactor& f, int s) {
 // vectorizes their loops along the panel's rows for each. The right-hand sides of a panel are
 // gathered into `t`, one array of `rows` per column (t + c rows): contiguous like L's columns.
 
+// The panel's own rows of y into t (one array of `rows` per column) and back.
+template <int K>
+__attribute__((always_inline)) inline void gather_own_rows(const Panel& p, const double* y,
+                                                           double* t) {
+  for (int c = 0; c < K; ++c) {
+    double* tc = t + static_cast<ptrdiff_t>(c) * p.rows;
+    for (int i = 0; i < p.columns; ++i) {
+      tc[i] = y[static_cast<ptrdiff_t>(p.first + i) * K + c];
+    }
+  }
+}
+
+template <int K>
+__attribute__((always_inline)) inline void scatter_own_rows(const Panel& p, const double* t,
+                                                            double* y) {
+  for (int c = 0; c < K; ++c) {
+    const double* tc = t + static_cast<ptrdiff_t>(c) * p.rows;
+    for (int i = 0; i < p.columns; ++i) {
+      y[static_cast<ptrdiff_t>(p.first + i) * K + c] = tc[i];
+    }
+  }
+}
+
 // Forward substitution with one panel (L y = b restricted to its columns): the diagonal block's
 // triangle four columns at a time, each group then subtracted from all rows below it in one pass
 // over those four columns of L; the rows below the panel receive their sums by scatter.
 template <int K>
 __attribute__((always_inline)) inline void forward_panel(const Panel& p, double* y, double* t) {
   const int rows = p.rows;
+  gather_own_rows<K>(p, y, t);
   for (int c = 0; c < K; ++c) {
     double* tc = t + static_cast<ptrdiff_t>(c) * rows;
-    for (int i = 0; i < p.columns; ++i) {
-      tc[i] = y[static_cast<ptrdiff_t>(p.first + i) * K + c];
-    }
     for (int i = p.columns; i < rows; ++i) {
       tc[i] = 0.0;
     }
@@ -84,11 +105,9 @@ __attribute__((always_inline)) inline void forward_panel(const Panel& p, double*
       }
     }
   }
+  scatter_own_rows<K>(p, t, y);
   for (int c = 0; c < K; ++c) {
     const double* tc = t + static_cast<ptrdiff_t>(c) * rows;
-    for (int i = 0; i < p.columns; ++i) {
-      y[static_cast<ptrdiff_t>(p.first + i) * K + c] = tc[i];
-    }
     for (int i = p.columns; i < rows; ++i) {
       y[static_cast<ptrdiff_t>(p.below[i - p.columns]) * K + c] += tc[i];
     }
@@ -101,11 +120,9 @@ __attribute__((always_inline)) inline void forward_panel(const Panel& p, double*
 template <int K>
 __attribute__((always_inline)) inline void backward_panel(const Panel& p, double* y, double* t) {
   const int rows = p.rows;
+  gather_own_rows<K>(p, y, t);
   for (int c = 0; c < K; ++c) {
     double* tc = t + static_cast<ptrdiff_t>(c) * rows;
-    for (int i = 0; i < p.columns; ++i) {
-      tc[i] = y[static_cast<ptrdiff_t>(p.first + i) * K + c];
-    }
     for (int i = p.columns; i < rows; ++i) {
       tc[i] = y[static_cast<ptrdiff_t>(p.below[i - p.columns]) * K + c];
     }
@@ -150,12 +167,7 @@ __attribute__((always_inline)) inline void backward_panel(const Panel& p, double
       tc[j] = (tc[j] - dot) / l[j];
     }
   }
-  for (int c = 0; c < K; ++c) {
-    const double* tc = t + static_cast<ptrdiff_t>(c) * rows;
-    for (int i = 0; i < p.columns; ++i) {
-      y[static_cast<ptrdiff_t>(p.first + i) * K + c] = tc[i];
-    }
-  }
+  scatter_own_rows<K>(p, t, y);
 }
 
 template <int K>
