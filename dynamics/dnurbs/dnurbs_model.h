@@ -173,9 +173,8 @@ class DNurbsModel : public RationalControlNetModel {
   // The rest derivatives x^alpha(q_r), alpha = 1..5, at quadrature point `point` of element
   // `element` (3 doubles each, alpha 1 first), or null without a rest shape.
   const double* rest_at(int element, int point) const;
-  // x^alpha - x^alpha_rest at one point (x^alpha without a rest shape).
-  static Eigen::Vector3d rest_difference(const RationalJacobian& jacobian, int alpha,
-                                         const double* rest);
+  // x^alpha - x^alpha_rest at one point (x^alpha without a rest shape), x^alpha given.
+  static Eigen::Vector3d rest_difference(const Eigen::Vector3d& x, int alpha, const double* rest);
 
   // Material values at quadrature point i (element * points_per_element + point):
   // material_[i * 8 + 0] = mu, [+1] = gamma, [+2 + alpha] = k_alpha.

@@ -308,9 +308,8 @@ const double* DNurbsModel::rest_at(int element, int point) const {
                                                 kRestStride)];
 }
 
-Eigen::Vector3d DNurbsModel::rest_difference(const RationalJacobian& jacobian, int alpha,
+Eigen::Vector3d DNurbsModel::rest_difference(const Eigen::Vector3d& x, int alpha,
                                              const double* rest) {
-  const Eigen::Vector3d& x = jacobian.point[static_cast<size_t>(alpha)];
   if (rest == nullptr) {
     return x;
   }
@@ -326,7 +325,9 @@ void DNurbsModel::subtract_elastic_force(double weight, const double* m, const d
     if (!has_stiffness_[static_cast<size_t>(alpha)]) {
       continue;
     }
-    const Eigen::Vector3d x = weight * m[2 + alpha] * rest_difference(jacobian, alpha, rest);
+    const Eigen::Vector3d x =
+        weight * m[2 + alpha] *
+        rest_difference(jacobian.point[static_cast<size_t>(alpha)], alpha, rest);
     for (int a = 0; a < basis.active_count; ++a) {
       double* f = force + basis.node[static_cast<size_t>(a)] * 4;
       Eigen::Map<Eigen::Vector3d>(f) -= jacobian.rational(alpha, a) * x;
@@ -398,7 +399,9 @@ double DNurbsModel::quadrature_potential_energy(ConstVectorRef q) const {
         double density = 0.0;
         for (int alpha = 1; alpha < kQuantityCount; ++alpha) {
           if (has_stiffness_[static_cast<size_t>(alpha)]) {
-            density += m[2 + alpha] * rest_difference(jacobian, alpha, rest).squaredNorm();
+            density += m[2 + alpha] *
+                       rest_difference(jacobian.point[static_cast<size_t>(alpha)], alpha, rest)
+                           .squaredNorm();
           }
         }
         energy += 0.5 * weight * density;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "dnurbs/core/error.h"
@@ -42,6 +43,17 @@ class ElementContraction {
 
   // Element (su, sv): contracts the node values with the v basis at its points.
   void contract_v(int su, int sv);
+  // v_sums[gv][kv][i] = sum_j N_j^(kv)(v_gv) X_ij over the first Width node values.
+  template <int Width>
+  void contract_row(int gv, int kv, int i, const double* nodes) const {
+    using Values = Eigen::Matrix<double, Width, 1>;
+    Eigen::Map<Values> sum(v_sum(gv, kv, i));
+    sum.setZero();
+    for (int j = 0; j < pv(); ++j) {
+      sum += basis_v(gv, kv, j) *
+             Eigen::Map<const Values>(nodes + static_cast<ptrdiff_t>(node(i, j)) * kNodeStride);
+    }
+  }
   // The sums S^alpha and the rates (acceleration, velocity, mixed: contract_v's element) at point
   // (gu, gv).
   void point_sums(int gu, int gv, HomogeneousSums& sums, RateValues& rates) const;
@@ -147,21 +159,10 @@ void ElementContraction::contract_v(int su, int sv) {
   for (int gv = 0; gv < v_.points_per_span; ++gv) {
     for (int kv = 0; kv <= order_v_; ++kv) {
       for (int i = 0; i < pu(); ++i) {
-        double* out = v_sum(gv, kv, i);
         if (kv == 0) {
-          Eigen::Map<NodeValues> sum(out);
-          sum.setZero();
-          for (int j = 0; j < pv(); ++j) {
-            sum += basis_v(gv, kv, j) * Eigen::Map<const NodeValues>(
-                                            &nodes[static_cast<size_t>(node(i, j) * kNodeStride)]);
-          }
+          contract_row<kNodeStride>(gv, kv, i, nodes.data());
         } else {
-          Eigen::Map<Eigen::Vector4d> sum(out);
-          sum.setZero();
-          for (int j = 0; j < pv(); ++j) {
-            sum += basis_v(gv, kv, j) * Eigen::Map<const Eigen::Vector4d>(
-                                            &nodes[static_cast<size_t>(node(i, j) * kNodeStride)]);
-          }
+          contract_row<4>(gv, kv, i, nodes.data());  // (w P, w) only
         }
       }
     }
@@ -293,12 +294,7 @@ void DNurbsModel::add_step_residual(ConstVectorRef q, ConstVectorRef qd, ConstVe
           const auto index = static_cast<size_t>(alpha);
           h[index].setZero();
           if (has_stiffness_[index]) {
-            h[index] =
-                weight * m[2 + alpha] *
-                (rest == nullptr
-                     ? point.point[index]
-                     : Eigen::Vector3d(point.point[index] -
-                                       Eigen::Map<const Eigen::Vector3d>(rest + 3 * (alpha - 1))));
+            h[index] = weight * m[2 + alpha] * rest_difference(point.point[index], alpha, rest);
           }
         }
         homogeneous_force_density(point, h, density);
